@@ -1,0 +1,46 @@
+#include "mrsv/status.h"
+
+namespace mrsv {
+
+const char* statusName(Status status) {
+  switch (status) {
+    case Status::kOk: return "ok";
+    case Status::kTruncatedFileHeader: return "truncated_file_header";
+    case Status::kBadSignature: return "bad_signature";
+    case Status::kSignatureTransferDamage: return "signature_transfer_damage";
+    case Status::kUnsupportedVersion: return "unsupported_version";
+    case Status::kReservedNonZero: return "reserved_nonzero";
+    case Status::kTruncatedChunkHeader: return "truncated_chunk_header";
+    case Status::kChunkPastEnd: return "chunk_past_end";
+    case Status::kOversizedChunk: return "oversized_chunk";
+    case Status::kChecksumMismatch: return "checksum_mismatch";
+    case Status::kBadChunkType: return "bad_chunk_type";
+    case Status::kUnknownCriticalChunk: return "unknown_critical_chunk";
+    case Status::kChunkOrder: return "chunk_order";
+    case Status::kBadChunkLength: return "bad_chunk_length";
+    case Status::kTrailingBytes: return "trailing_bytes";
+    case Status::kTooManyChunks: return "too_many_chunks";
+    case Status::kBadMetadata: return "bad_metadata";
+    case Status::kBadGridHeader: return "bad_grid_header";
+    case Status::kUnsupportedCoding: return "unsupported_coding";
+    case Status::kSampleDataMismatch: return "sample_data_mismatch";
+    case Status::kResourceLimit: return "resource_limit";
+    case Status::kIoError: return "io_error";
+    case Status::kInvalidArgument: return "invalid_argument";
+  }
+  return "unknown_status";
+}
+
+std::string statusCode(Status status) {
+  return "E" + std::to_string(static_cast<int>(status));
+}
+
+std::string Error::describe() const {
+  std::string out = "offset " + std::to_string(offset) + ": " + statusCode(status) + " " +
+                    statusName(status) + ": ";
+  if (!field.empty()) out += field + ": ";
+  out += message;
+  return out;
+}
+
+}  // namespace mrsv

@@ -1,0 +1,64 @@
+// spec: 3.2, 3.3 decoding a grid stream; 3.4 canonical output.
+#include <string>
+
+#include "mrsv/grid.h"
+
+namespace mrsv {
+
+Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
+                 DecodedGrid* out) {
+  *out = DecodedGrid{};
+  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
+  const Container& c = out->container;
+  if (c.chunks.empty()) return {};  // a prefix that ends before the content header
+
+  // readContainer guarantees the first chunk is the content header.
+  if (Error e = parseGridHeader(c.chunks[0], &out->header); !e.ok()) return e;
+  const GridHeader& h = out->header;
+  const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);
+
+  bool seen_stored = false;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.type == kChunkMeta) {
+      if (Error e = parseMetadata(chunk.payload, chunk.length, chunk.payloadOffset(),
+                                  &out->metadata);
+          !e.ok())
+        return e;
+    } else if (chunk.type == kChunkGridStored) {
+      // spec: 3.3 GRAW: exactly the grid's samples, once.
+      if (seen_stored)
+        return Error{Status::kChunkOrder, chunk.offset, "GRAW", "more than one GRAW chunk"};
+      seen_stored = true;
+      if (chunk.length != expected_bytes)
+        return Error{Status::kSampleDataMismatch, chunk.offset + 4, "GRAW.chunk_length",
+                     "GRAW holds " + std::to_string(chunk.length) + " bytes but the grid needs " +
+                         std::to_string(expected_bytes)};
+      if (expected_bytes > options.max_output_bytes)
+        return Error{Status::kResourceLimit, chunk.offset, "GRAW",
+                     "grid of " + std::to_string(expected_bytes) +
+                         " bytes exceeds the decoder's output limit"};
+      out->samples.assign(chunk.payload, chunk.payload + chunk.length);
+      out->has_samples = true;
+    }
+    // Unknown ancillary chunks are skipped (spec 2.4).
+  }
+  if (c.complete && !seen_stored)
+    return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND",
+                 "a stored grid needs one GRAW chunk before MEND"};
+  return {};
+}
+
+std::vector<uint8_t> canonicalGridOutput(const DecodedGrid& grid) {
+  const GridHeader& h = grid.header;
+  std::string line = "mrsv-canonical-grid 1 " + std::string(sampleTypeName(h.sample_type)) + " " +
+                     std::to_string(h.num_dims) + " " + std::to_string(h.size_x) + " " +
+                     std::to_string(h.size_y) + " " + std::to_string(h.size_z) + " " +
+                     std::to_string(grid.has_samples ? h.sampleCount() : 0) + "\n";
+  if (grid.container.chunks.empty()) line = "mrsv-canonical-empty 1\n";
+  std::vector<uint8_t> out(line.begin(), line.end());
+  out.insert(out.end(), grid.samples.begin(), grid.samples.end());
+  return out;
+}
+
+}  // namespace mrsv

@@ -1,0 +1,72 @@
+// The conformance vectors, decoded in-process: every valid vector decodes,
+// every invalid one fails with its code at its offset, and the decoder
+// contract holds on every prefix and with a trailing byte.
+#include <gtest/gtest.h>
+
+#include "mrsv/grid.h"
+#include "test_support.h"
+
+namespace mrsv {
+namespace {
+
+using test::manifestVectors;
+using test::readFileOrFail;
+using test::sourcePath;
+
+TEST(ConformanceVectors, ManifestListsVectors) { EXPECT_GE(manifestVectors().size(), 20u); }
+
+TEST(ConformanceVectors, EachDecodesOrFailsAsTheManifestSays) {
+  for (const auto& v : manifestVectors()) {
+    std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
+    DecodedGrid grid;
+    Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    if (v.valid) {
+      EXPECT_TRUE(e.ok()) << v.file << ": " << e.describe();
+    } else {
+      EXPECT_EQ(static_cast<int>(e.status), v.error) << v.file << ": " << e.describe();
+      EXPECT_EQ(e.offset, v.offset) << v.file << ": " << e.describe();
+    }
+  }
+}
+
+TEST(ConformanceVectors, EveryPrefixOfAValidVectorIsHandled) {
+  for (const auto& v : manifestVectors()) {
+    if (!v.valid) continue;
+    std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
+    for (size_t n = 0; n < bytes.size(); ++n) {
+      // A fresh exact-size allocation per prefix: over-reads hit the redzone.
+      std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + static_cast<long>(n));
+      DecodedGrid grid;
+      Error strict = decodeGrid(prefix.data(), prefix.size(), DecodeOptions{}, &grid);
+      if (!strict.ok()) {
+        EXPECT_TRUE(strict.status == Status::kTruncatedFileHeader ||
+                    strict.status == Status::kTruncatedChunkHeader ||
+                    strict.status == Status::kChunkPastEnd)
+            << v.file << " prefix " << n << ": " << strict.describe();
+      }
+      if (n >= kFileHeaderSize) {
+        DecodeOptions lenient;
+        lenient.container.allow_partial_tail = true;
+        EXPECT_TRUE(decodeGrid(prefix.data(), prefix.size(), lenient, &grid).ok())
+            << v.file << " prefix " << n;
+      }
+    }
+  }
+}
+
+TEST(ConformanceVectors, OneTrailingByteIsRejectedAfterMend) {
+  for (const auto& v : manifestVectors()) {
+    if (!v.valid) continue;
+    std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
+    DecodedGrid grid;
+    ASSERT_TRUE(decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid).ok());
+    if (!grid.container.complete) continue;
+    bytes.push_back(0);
+    Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    EXPECT_EQ(e.status, Status::kTrailingBytes) << v.file;
+    EXPECT_EQ(e.offset, bytes.size() - 1) << v.file;
+  }
+}
+
+}  // namespace
+}  // namespace mrsv

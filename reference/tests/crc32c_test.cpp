@@ -1,0 +1,41 @@
+#include "common/crc32c.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace mrsv {
+namespace {
+
+uint32_t crcOf(const std::string& s) {
+  return crc32c(0, reinterpret_cast<const uint8_t*>(s.data()), s.size());
+}
+
+TEST(Crc32c, KnownCheckValue) { EXPECT_EQ(crcOf("123456789"), 0xE3069283u); }
+
+TEST(Crc32c, EmptyIsZero) { EXPECT_EQ(crcOf(""), 0u); }
+
+// RFC 3720 (iSCSI) appendix B.4 test patterns.
+TEST(Crc32c, Rfc3720Patterns) {
+  std::vector<uint8_t> zeros(32, 0x00), ones(32, 0xFF), inc(32), dec(32);
+  for (int i = 0; i < 32; ++i) {
+    inc[i] = static_cast<uint8_t>(i);
+    dec[i] = static_cast<uint8_t>(31 - i);
+  }
+  EXPECT_EQ(crc32c(0, zeros.data(), 32), 0x8A9136AAu);
+  EXPECT_EQ(crc32c(0, ones.data(), 32), 0x62A8AB43u);
+  EXPECT_EQ(crc32c(0, inc.data(), 32), 0x46DD794Eu);
+  EXPECT_EQ(crc32c(0, dec.data(), 32), 0x113FDB5Cu);
+}
+
+TEST(Crc32c, IncrementalEqualsOneShotAtEverySplit) {
+  std::string s = "The quick brown fox jumps over the lazy dog, twice over: 0123456789";
+  const auto* p = reinterpret_cast<const uint8_t*>(s.data());
+  uint32_t whole = crc32c(0, p, s.size());
+  for (size_t split = 0; split <= s.size(); ++split)
+    EXPECT_EQ(crc32c(crc32c(0, p, split), p + split, s.size() - split), whole) << split;
+}
+
+}  // namespace
+}  // namespace mrsv

@@ -1,0 +1,105 @@
+#include "cli.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace mrsv::cli {
+namespace {
+bool contains(const std::vector<std::string>& list, const std::string& name) {
+  for (const auto& s : list)
+    if (s == name) return true;
+  return false;
+}
+}  // namespace
+
+bool Args::parse(int argc, char** argv, const Spec& spec, std::string* error) {
+  bool options_done = false;
+  for (int i = 0; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (options_done || arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
+      if (arg == "--") {
+        options_done = true;
+        continue;
+      }
+      if (!options_done && arg.size() > 1 && arg[0] == '-' && arg != "-") {
+        *error = "unknown option '" + arg + "'";
+        return false;
+      }
+      positional_.push_back(arg);
+      continue;
+    }
+    std::string name = arg.substr(2), value;
+    bool inline_value = false;
+    if (size_t eq = name.find('='); eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      inline_value = true;
+    }
+    if (contains(spec.flags, name)) {
+      if (inline_value) {
+        *error = "option '--" + name + "' takes no value";
+        return false;
+      }
+      flags_[name] = true;
+    } else if (contains(spec.options, name) || contains(spec.repeatable, name)) {
+      if (!inline_value) {
+        if (i + 1 >= argc) {
+          *error = "option '--" + name + "' needs a value";
+          return false;
+        }
+        value = argv[++i];
+      }
+      if (values_.count(name) && !contains(spec.repeatable, name)) {
+        *error = "option '--" + name + "' given twice";
+        return false;
+      }
+      values_[name].push_back(value);
+    } else {
+      *error = "unknown option '--" + name + "'";
+      return false;
+    }
+  }
+  return true;
+}
+
+const std::vector<std::string>& Args::values(const std::string& name) const {
+  static const std::vector<std::string> kEmpty;
+  auto it = values_.find(name);
+  return it == values_.end() ? kEmpty : it->second;
+}
+
+int reportError(const char* command, const std::string& file, const Error& error) {
+  std::fprintf(stderr, "mrsv %s: %s: %s\n", command, file.c_str(), error.describe().c_str());
+  return kExitInvalidData;
+}
+
+int fail(const char* command, const std::string& message, int exit_code) {
+  std::fprintf(stderr, "mrsv %s: %s\n", command, message.c_str());
+  return exit_code;
+}
+
+bool parseUint64(const std::string& text, uint64_t* out) {
+  if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos)
+    return false;
+  *out = std::stoull(text);
+  return true;
+}
+
+Progress::Progress(const char* label, bool quiet)
+    : label_(label), enabled_(!quiet && ::isatty(STDERR_FILENO)) {}
+
+Progress::~Progress() {
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r%s: done      \n", label_);
+}
+
+void Progress::update(double fraction) {
+  if (!enabled_) return;
+  int percent = static_cast<int>(fraction * 100.0);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  std::fprintf(stderr, "\r%s: %3d%%", label_, percent);
+  std::fflush(stderr);
+}
+
+}  // namespace mrsv::cli

@@ -1,0 +1,63 @@
+// Shared pieces of the mrsv command line: argument parsing, error lines, progress.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mrsv/status.h"
+
+namespace mrsv::cli {
+
+// Exit statuses of every subcommand (documented in README and --help).
+constexpr int kExitOk = 0;
+constexpr int kExitInvalidData = 1;  // the input breaks a rule of the format or of its layout
+constexpr int kExitUsage = 2;        // the command line is wrong
+constexpr int kExitIo = 3;           // a file could not be read or written
+
+// A small parser: options take "--name value" or "--name=value"; flags take
+// nothing; options listed as repeatable may appear more than once.
+class Args {
+ public:
+  struct Spec {
+    std::vector<std::string> options;      // take a value
+    std::vector<std::string> flags;        // take none
+    std::vector<std::string> repeatable;   // options that may repeat
+  };
+  // Returns false and sets error on an unknown option or a missing value.
+  bool parse(int argc, char** argv, const Spec& spec, std::string* error);
+
+  bool flag(const std::string& name) const { return flags_.count(name) != 0; }
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  const std::string& value(const std::string& name) const { return values_.at(name).front(); }
+  const std::vector<std::string>& values(const std::string& name) const;
+  const std::vector<std::string>& positional() const { return positional_; }
+
+ private:
+  std::map<std::string, std::vector<std::string>> values_;
+  std::map<std::string, bool> flags_;
+  std::vector<std::string> positional_;
+};
+
+// "mrsv CMD: FILE: offset N: E111 name: field: message" on stderr; returns kExitInvalidData.
+int reportError(const char* command, const std::string& file, const Error& error);
+// "mrsv CMD: message" on stderr; returns `exit_code`.
+int fail(const char* command, const std::string& message, int exit_code);
+
+// Parses a whole non-negative decimal number; false when not one.
+bool parseUint64(const std::string& text, uint64_t* out);
+
+// Progress on stderr, only when it is a terminal and not --quiet.
+class Progress {
+ public:
+  Progress(const char* label, bool quiet);
+  ~Progress();
+  void update(double fraction);
+
+ private:
+  const char* label_;
+  bool enabled_;
+  int last_percent_ = -1;
+};
+
+}  // namespace mrsv::cli

@@ -1,0 +1,92 @@
+// mrsv decode: an MRSV file (or a prefix of one) to raw samples.
+#include <cstdio>
+
+#include "cli.h"
+#include "commands.h"
+#include "mrsv/file_io.h"
+#include "mrsv/grid.h"
+#include "mrsv/raw_grid.h"
+
+namespace mrsv::cli {
+namespace {
+
+const char kHelp[] =
+    "Usage: mrsv decode [options] IN.mrsv OUT\n"
+    "\n"
+    "Decode an MRSV grid to a headerless raw file of the stream's sample type\n"
+    "(x fastest, then y, then z).\n"
+    "\n"
+    "Options:\n"
+    "  --endian little|big   byte order of OUT (default little)\n"
+    "  --canonical           write the canonical output of spec 3.4 instead: the bytes\n"
+    "                        whose SHA-256 the conformance suite compares\n"
+    "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
+    "                        arrived: the complete chunks among them are decoded\n"
+    "  --quiet               no progress or notes on stderr\n"
+    "  --help                this text\n"
+    "\n"
+    "A file that ends after a complete chunk but before MEND is a prefix and decodes\n"
+    "to what its complete chunks hold. OUT is written under a temporary name and renamed\n"
+    "when complete. Exit status: 0 done, 1 invalid stream, 2 usage error, 3 file error.\n";
+
+}  // namespace
+
+int runDecode(int argc, char** argv) {
+  const char* cmd = "decode";
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv, {{"endian", "bytes"}, {"canonical", "quiet", "help"}, {}}, &error))
+    return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
+  if (args.flag("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  if (args.positional().size() != 2)
+    return fail(cmd, "expected IN.mrsv and OUT (see 'mrsv decode --help')", kExitUsage);
+  const std::string& in = args.positional()[0];
+  const std::string& out = args.positional()[1];
+  Endian endian = Endian::kLittle;
+  if (args.has("endian")) {
+    if (args.value("endian") == "big") endian = Endian::kBig;
+    else if (args.value("endian") != "little")
+      return fail(cmd, "--endian must be little or big", kExitUsage);
+  }
+  uint64_t byte_limit = UINT64_MAX;
+  if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
+    return fail(cmd, "--bytes '" + args.value("bytes") + "' is not a whole number", kExitUsage);
+  if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+
+  Progress progress("decode", args.flag("quiet"));
+  std::vector<uint8_t> bytes;
+  if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
+  DecodeOptions options;
+  if (byte_limit < bytes.size()) {
+    bytes.resize(static_cast<size_t>(byte_limit));
+    options.container.allow_partial_tail = true;
+  }
+  progress.update(0.2);
+  DecodedGrid grid;
+  if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok())
+    return reportError(cmd, in, e);
+  progress.update(0.8);
+
+  std::vector<uint8_t> output;
+  if (args.flag("canonical")) {
+    output = canonicalGridOutput(grid);
+  } else {
+    if (!grid.has_samples)
+      return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
+                           std::to_string(grid.container.chunks.size()) + " chunks)",
+                  kExitInvalidData);
+    output = std::move(grid.samples);
+    if (endian == Endian::kBig) swapSampleBytes(&output, sampleSize(grid.header.sample_type));
+  }
+  if (!grid.container.complete && !args.flag("quiet"))
+    std::fprintf(stderr, "mrsv decode: %s: note: stream is a prefix (no MEND); decoded its %zu complete chunks\n",
+                 in.c_str(), grid.container.chunks.size());
+  if (!writeFileAtomically(out, output, &error)) return fail(cmd, out + ": " + error, kExitIo);
+  progress.update(1.0);
+  return kExitOk;
+}
+
+}  // namespace mrsv::cli

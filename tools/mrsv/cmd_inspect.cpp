@@ -1,0 +1,224 @@
+// mrsv info (the chunk table of a file) and mrsv check (validation).
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+
+#include "cli.h"
+#include "commands.h"
+#include "mrsv/file_io.h"
+#include "mrsv/grid.h"
+
+namespace mrsv::cli {
+namespace {
+
+const char kInfoHelp[] =
+    "Usage: mrsv info [--json] FILE.mrsv\n"
+    "\n"
+    "Print the format version, the content header, the chunk table (offset, type,\n"
+    "payload length, CRC-32C) and the metadata of an MRSV file. For a damaged file\n"
+    "the chunks before the damage are listed, then the error.\n"
+    "\n"
+    "Options:\n"
+    "  --json    machine-readable output\n"
+    "  --help    this text\n"
+    "\n"
+    "Exit status: 0 valid, 1 invalid stream, 2 usage error, 3 file error.\n";
+
+const char kCheckHelp[] =
+    "Usage: mrsv check [--quiet] FILE.mrsv...\n"
+    "\n"
+    "Validate MRSV files against every rule a decoder applies: signature, version,\n"
+    "chunk framing and checksums, chunk order, headers, metadata and sample data.\n"
+    "Prints one line per file: 'FILE: ok ...' on stdout, or on stderr\n"
+    "'FILE: offset N: E<code> <name>: <field>: <rule broken>'.\n"
+    "\n"
+    "Options:\n"
+    "  --quiet   print only the files that fail\n"
+    "  --help    this text\n"
+    "\n"
+    "Exit status: 0 all valid, 1 any invalid, 2 usage error, 3 file error.\n";
+
+std::string chunkRole(const ChunkType& type) {
+  if (type == kChunkGridHeader) return "grid header";
+  if (type == kChunkGridStored) return "stored samples";
+  if (type == kChunkMeta) return "metadata";
+  if (type == kChunkEnd) return "end";
+  return type.critical() ? "unknown critical" : "unknown ancillary (skipped)";
+}
+
+std::string nodataText(const GridHeader& h) {
+  uint64_t b = h.nodata_bits;
+  switch (h.sample_type) {
+    case SampleType::kUint8:
+    case SampleType::kUint16: return std::to_string(b);
+    case SampleType::kInt16: return std::to_string(static_cast<int16_t>(b));
+    case SampleType::kInt32: return std::to_string(static_cast<int32_t>(b));
+    case SampleType::kFloat32: {
+      float f;
+      uint32_t u = static_cast<uint32_t>(b);
+      std::memcpy(&f, &u, 4);
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.9g", f);
+      return buf;
+    }
+    case SampleType::kFloat64: {
+      double d;
+      std::memcpy(&d, &b, 8);
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", d);
+      return buf;
+    }
+  }
+  return "?";
+}
+
+std::string sizeText(const GridHeader& h) {
+  std::string s = std::to_string(h.size_x);
+  if (h.num_dims >= 2) s += "x" + std::to_string(h.size_y);
+  if (h.num_dims >= 3) s += "x" + std::to_string(h.size_z);
+  return s;
+}
+
+std::string summary(const DecodedGrid& grid) {
+  if (grid.container.chunks.empty()) return "empty prefix (file header only)";
+  const GridHeader& h = grid.header;
+  std::string s = "grid " + std::to_string(h.num_dims) + "-D " + sampleTypeName(h.sample_type) +
+                  " " + sizeText(h) + ", stored";
+  if (h.hasNodata()) s += ", nodata " + nodataText(h);
+  s += ", " + std::to_string(grid.container.chunks.size() + (grid.container.complete ? 1 : 0)) +
+       " chunks";
+  s += grid.container.complete ? ", complete" : ", prefix (ends before MEND)";
+  return s;
+}
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+void printJson(const std::string& file, size_t file_size, const DecodedGrid& grid, const Error& e) {
+  const Container& c = grid.container;
+  std::printf("{\n  \"file\": %s,\n  \"bytes\": %zu,\n", jsonString(file).c_str(), file_size);
+  std::printf("  \"version\": \"%u.%u\",\n  \"complete\": %s,\n", c.version_major,
+              c.version_minor, c.complete ? "true" : "false");
+  if (!c.chunks.empty() && c.chunks[0].type == kChunkGridHeader && grid.header.num_dims) {
+    const GridHeader& h = grid.header;
+    std::printf("  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
+                "\"coding\": \"stored\"",
+                h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z);
+    if (h.hasNodata()) std::printf(", \"nodata\": %s", jsonString(nodataText(h)).c_str());
+    std::printf("},\n");
+  }
+  std::printf("  \"chunks\": [");
+  for (size_t i = 0; i < c.chunks.size(); ++i) {
+    const ChunkView& k = c.chunks[i];
+    std::printf("%s\n    {\"offset\": %" PRIu64 ", \"type\": \"%s\", \"length\": %u, \"crc\": \"%08x\"}",
+                i ? "," : "", k.offset, k.type.str().c_str(), k.length, k.crc);
+  }
+  if (c.complete)
+    std::printf("%s\n    {\"offset\": %" PRIu64 ", \"type\": \"MEND\", \"length\": 0}",
+                c.chunks.empty() ? "" : ",", c.end_chunk_offset);
+  std::printf("\n  ],\n  \"metadata\": {");
+  for (size_t i = 0; i < grid.metadata.entries.size(); ++i)
+    std::printf("%s%s: %s", i ? ", " : "", jsonString(grid.metadata.entries[i].first).c_str(),
+                jsonString(grid.metadata.entries[i].second).c_str());
+  std::printf("},\n  \"error\": ");
+  if (e.ok()) {
+    std::printf("null\n}\n");
+  } else {
+    std::printf("{\"code\": %d, \"name\": \"%s\", \"offset\": %" PRIu64 ", \"field\": %s, \"message\": %s}\n}\n",
+                static_cast<int>(e.status), statusName(e.status), e.offset,
+                jsonString(e.field).c_str(), jsonString(e.message).c_str());
+  }
+}
+
+void printTable(const std::string& file, size_t file_size, const DecodedGrid& grid) {
+  const Container& c = grid.container;
+  std::printf("file:     %s (%zu bytes)\n", file.c_str(), file_size);
+  std::printf("format:   MRSV %u.%u\n", c.version_major, c.version_minor);
+  std::printf("content:  %s\n", summary(grid).c_str());
+  std::printf("chunks:\n  %10s  %-4s  %10s  %-8s  %s\n", "offset", "type", "length", "crc32c", "role");
+  for (const ChunkView& k : c.chunks)
+    std::printf("  %10" PRIu64 "  %-4s  %10u  %08x  %s\n", k.offset, k.type.str().c_str(), k.length,
+                k.crc, chunkRole(k.type).c_str());
+  if (c.complete)
+    std::printf("  %10" PRIu64 "  %-4s  %10u  %-8s  %s\n", c.end_chunk_offset, "MEND", 0u, "", "end");
+  if (!grid.metadata.entries.empty()) {
+    std::printf("metadata:\n");
+    for (const auto& [key, value] : grid.metadata.entries)
+      std::printf("  %s=%s\n", key.c_str(), value.c_str());
+  }
+}
+
+}  // namespace
+
+int runInfo(int argc, char** argv) {
+  const char* cmd = "info";
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv, {{}, {"json", "help"}, {}}, &error))
+    return fail(cmd, error + " (see 'mrsv info --help')", kExitUsage);
+  if (args.flag("help")) {
+    std::fputs(kInfoHelp, stdout);
+    return kExitOk;
+  }
+  if (args.positional().size() != 1)
+    return fail(cmd, "expected one FILE.mrsv (see 'mrsv info --help')", kExitUsage);
+  const std::string& file = args.positional()[0];
+  std::vector<uint8_t> bytes;
+  if (!readWholeFile(file, &bytes, &error)) return fail(cmd, file + ": " + error, kExitIo);
+  DecodedGrid grid;
+  Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+  if (args.flag("json")) {
+    printJson(file, bytes.size(), grid, e);
+    return e.ok() ? kExitOk : kExitInvalidData;
+  }
+  printTable(file, bytes.size(), grid);
+  return e.ok() ? kExitOk : reportError(cmd, file, e);
+}
+
+int runCheck(int argc, char** argv) {
+  const char* cmd = "check";
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv, {{}, {"quiet", "help"}, {}}, &error))
+    return fail(cmd, error + " (see 'mrsv check --help')", kExitUsage);
+  if (args.flag("help")) {
+    std::fputs(kCheckHelp, stdout);
+    return kExitOk;
+  }
+  if (args.positional().empty())
+    return fail(cmd, "expected at least one FILE.mrsv (see 'mrsv check --help')", kExitUsage);
+  int status = kExitOk;
+  for (const std::string& file : args.positional()) {
+    std::vector<uint8_t> bytes;
+    if (!readWholeFile(file, &bytes, &error)) {
+      fail(cmd, file + ": " + error, kExitIo);
+      if (status == kExitOk) status = kExitIo;
+      continue;
+    }
+    DecodedGrid grid;
+    Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    if (!e.ok()) {
+      reportError(cmd, file, e);
+      status = kExitInvalidData;
+    } else if (!args.flag("quiet")) {
+      std::printf("%s: ok: %s\n", file.c_str(), summary(grid).c_str());
+    }
+  }
+  return status;
+}
+
+}  // namespace mrsv::cli
