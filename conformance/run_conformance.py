@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Runs the MRSV conformance vectors against any decoder or checker.
+
+The decoder is given as a command template with {in} and {out}:
+
+  decode mode (default): for a valid vector the command must exit 0 and write
+    the canonical output (spec 3.4) to {out}; its SHA-256 must equal the
+    manifest's. For an invalid vector it must exit non-zero, print the code
+    as E<number> (e.g. E113) on stderr or stdout, and leave no file at {out}.
+  check mode: {out} is not used; a valid vector must exit 0, an invalid one
+    must exit non-zero and print its E<number>; with --check-offsets the line
+    must also say "offset <n>" with the manifest's offset.
+
+Examples:
+  run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}"
+  run_conformance.py --mode check --check-offsets --decoder "build/mrsv check {in}"
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--manifest", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "manifest.json"))
+    parser.add_argument("--decoder", required=True, help="command template with {in} and {out}")
+    parser.add_argument("--mode", choices=("decode", "check"), default="decode")
+    parser.add_argument("--check-offsets", action="store_true", help="also require 'offset <n>' in error output")
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds allowed per vector")
+    parser.add_argument("--verbose", action="store_true")
+    args = parser.parse_args()
+
+    with open(args.manifest, encoding="utf-8") as f:
+        manifest = json.load(f)
+    base = os.path.dirname(os.path.abspath(args.manifest))
+    passed, failures = 0, []
+    with tempfile.TemporaryDirectory(prefix="mrsv-conformance-") as tmp:
+        for vector in manifest["vectors"]:
+            path = os.path.join(base, vector["file"])
+            out = os.path.join(tmp, "out.bin")
+            if os.path.exists(out):
+                os.remove(out)
+            cmd = [part.replace("{in}", path).replace("{out}", out) for part in shlex.split(args.decoder)]
+            try:
+                run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
+            except subprocess.TimeoutExpired:
+                failures.append((vector["file"], f"no answer within {args.timeout} s (a decoder must not hang)"))
+                continue
+            text = (run.stdout + run.stderr).decode("utf-8", "replace")
+            problem = None
+            if run.returncode < 0:
+                problem = f"killed by signal {-run.returncode} (a decoder must not crash)"
+            elif vector["valid"]:
+                if run.returncode != 0:
+                    problem = f"exit {run.returncode} on a valid vector: {text.strip()[:300]}"
+                elif args.mode == "decode":
+                    if not os.path.exists(out):
+                        problem = "no output written"
+                    else:
+                        digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
+                        if digest != vector["sha256"]:
+                            problem = f"output sha256 {digest}, expected {vector['sha256']}"
+            else:
+                code = "E%d" % vector["error"]
+                if run.returncode == 0:
+                    problem = f"exit 0 on an invalid vector (expected {code} {vector['error_name']})"
+                elif not re.search(r"\b%s\b" % code, text):
+                    problem = f"expected {code} {vector['error_name']}, got: {text.strip()[:300]}"
+                elif args.check_offsets and not re.search(r"\boffset %d\b" % vector["offset"], text):
+                    problem = f"expected offset {vector['offset']}, got: {text.strip()[:300]}"
+                elif args.mode == "decode" and os.path.exists(out):
+                    problem = "an output file was left behind for an invalid stream"
+            if problem:
+                failures.append((vector["file"], problem))
+            else:
+                passed += 1
+                if args.verbose:
+                    print(f"ok    {vector['file']}")
+    for name, problem in failures:
+        print(f"FAIL  {name}: {problem}")
+    print(f"conformance ({args.mode}): {passed} passed, {len(failures)} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Behaviour of the mrsv command line: help, exit statuses, one-line errors,
+# no half-written outputs, inputs never overwritten.
+# Usage: cli_test.sh PATH/TO/mrsv
+set -u
+mrsv=$1
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+vectors=$root/conformance/vectors
+crop=$root/demo/data/mt_st_helens_128x128_int16le.raw
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+# expect STATUS CMD... : runs CMD, compares the exit status
+expect() {
+  local want=$1; shift
+  "$@" >"$work/stdout" 2>"$work/stderr"
+  local got=$?
+  if [ "$got" -eq "$want" ]; then ok; else bad "exit $got (want $want): $*: $(head -c 300 "$work/stderr")"; fi
+}
+stderr_has() { if grep -q -- "$1" "$work/stderr"; then ok; else bad "stderr lacks '$1': $(head -c 300 "$work/stderr")"; fi; }
+stdout_has() { if grep -q -- "$1" "$work/stdout"; then ok; else bad "stdout lacks '$1'"; fi; }
+one_line_stderr() { if [ "$(wc -l <"$work/stderr")" -eq 1 ]; then ok; else bad "stderr is not one line: $(cat "$work/stderr")"; fi; }
+
+# Help everywhere.
+expect 0 "$mrsv" --help; stdout_has "Commands:"
+expect 0 "$mrsv" --version; stdout_has "format 0.1"
+for cmd in encode decode info check; do
+  expect 0 "$mrsv" "$cmd" --help; stdout_has "Usage: mrsv $cmd"
+  expect 0 "$mrsv" help "$cmd"; stdout_has "Usage: mrsv $cmd"
+done
+expect 2 "$mrsv"
+expect 2 "$mrsv" frobnicate; stderr_has "unknown command"
+expect 2 "$mrsv" encode --no-such-option a b; stderr_has "unknown option"; one_line_stderr
+
+# Encode, decode, compare: the stored coding is lossless.
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --meta spacing=30,30 --meta value_units=m "$crop" "$work/a.mrsv"
+expect 0 "$mrsv" decode --quiet "$work/a.mrsv" "$work/a.raw"
+if cmp -s "$crop" "$work/a.raw"; then ok; else bad "decoded samples differ from the input"; fi
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --meta spacing=30,30 --meta value_units=m "$crop" "$work/b.mrsv"
+if cmp -s "$work/a.mrsv" "$work/b.mrsv"; then ok; else bad "encoder is not deterministic"; fi
+expect 0 "$mrsv" decode --quiet --endian big "$work/a.mrsv" "$work/a_be.raw"
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --endian big "$work/a_be.raw" "$work/c.mrsv"
+expect 0 "$mrsv" decode --quiet "$work/c.mrsv" "$work/c.raw"
+if cmp -s "$crop" "$work/c.raw"; then ok; else bad "big-endian round trip differs"; fi
+
+# Info and check.
+expect 0 "$mrsv" info "$work/a.mrsv"; stdout_has "GHDR"; stdout_has "spacing=30,30"; stdout_has "complete"
+expect 0 "$mrsv" info --json "$work/a.mrsv"
+if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["grid"]["size"]==[128,128,1]' "$work/stdout"; then ok; else bad "info --json is not the expected JSON"; fi
+expect 0 "$mrsv" check "$work/a.mrsv" "$vectors/valid/smallest.mrsv"; stdout_has "ok: grid"
+expect 1 "$mrsv" check "$vectors/invalid/bad_checksum.mrsv"
+stderr_has "bad_checksum.mrsv: offset 568: E113 checksum_mismatch"; one_line_stderr
+expect 1 "$mrsv" check "$work/a.mrsv" "$vectors/invalid/trailing_bytes.mrsv"; stderr_has "E118"
+expect 1 "$mrsv" info "$vectors/invalid/unknown_critical_chunk.mrsv"; stdout_has "GHDR"; stderr_has "E115"
+
+# Progressive prefix: --bytes cuts inside GRAW, leaving the header only.
+expect 1 "$mrsv" decode --quiet --bytes 100 "$work/a.mrsv" "$work/p.raw"; stderr_has "ends before its sample data"
+expect 0 "$mrsv" decode --quiet --canonical --bytes 100 "$work/a.mrsv" "$work/p.can"
+if head -1 "$work/p.can" | grep -q "mrsv-canonical-grid 1 int16 2 128 128 1 0"; then ok; else bad "prefix canonical output"; fi
+
+# Bad input: one line naming the file and the rule; no output left behind.
+expect 1 "$mrsv" decode --quiet "$vectors/invalid/truncated_payload.mrsv" "$work/t.raw"
+stderr_has "truncated_payload.mrsv: offset 52: E111"; one_line_stderr
+if [ ! -e "$work/t.raw" ]; then ok; else bad "decode left an output for an invalid stream"; fi
+expect 1 "$mrsv" encode --quiet --dims 100,100 --type int16 "$crop" "$work/x.mrsv"
+stderr_has "needs 20000"; one_line_stderr
+if [ ! -e "$work/x.mrsv" ]; then ok; else bad "encode left an output for bad input"; fi
+expect 2 "$mrsv" encode --dims 128,0 --type int16 "$crop" "$work/x.mrsv"; stderr_has "at least 1"
+expect 2 "$mrsv" encode --dims 128,128 --type int12 "$crop" "$work/x.mrsv"; stderr_has "int12"
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --nodata 40000 "$crop" "$work/x.mrsv"; stderr_has "out of range"
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --meta Bad=1 "$crop" "$work/x.mrsv"; stderr_has "must match"
+expect 3 "$mrsv" encode --dims 128,128 --type int16 "$work/missing.raw" "$work/x.mrsv"; stderr_has "missing.raw"
+expect 3 "$mrsv" encode --dims 128,128 --type int16 "$crop" "$work/no/dir/x.mrsv"; one_line_stderr
+: >"$work/empty.raw"
+expect 1 "$mrsv" encode --dims 1 --type uint8 "$work/empty.raw" "$work/x.mrsv"; stderr_has "has 0 bytes"
+
+# The input is never overwritten.
+cp "$work/a.mrsv" "$work/keep.mrsv"
+expect 2 "$mrsv" decode "$work/keep.mrsv" "$work/keep.mrsv"; stderr_has "refusing"
+if cmp -s "$work/a.mrsv" "$work/keep.mrsv"; then ok; else bad "decode changed its input"; fi
+cp "$crop" "$work/in.raw"
+expect 2 "$mrsv" encode --dims 128,128 --type int16 "$work/in.raw" "$work/./in.raw"
+if cmp -s "$crop" "$work/in.raw"; then ok; else bad "encode changed its input"; fi
+
+echo "cli: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
