@@ -5,7 +5,6 @@
 #include <zstd.h>
 
 #include <algorithm>
-#include <regex>
 
 #include "test_support.h"
 
@@ -32,20 +31,34 @@ std::vector<std::string> sharedGridFiles() {
 }
 
 bool loadSharedGrid(const std::string& path, SharedGrid* out) {
-  static const std::regex kName(R"(_(\d+)x(\d+)(?:x(\d+))?_(uint8|int16le|uint16le)\.raw\.zst$)");
-  std::smatch m;
-  if (!std::regex_search(path, m, kName)) {
+  // NAME_<X>x<Y>[x<Z>]_<type>.raw.zst: the last two '_' fields give dims and type.
+  out->name = path.substr(path.find_last_of('/') + 1);
+  std::string stem = out->name.substr(0, out->name.size() - 8);
+  size_t type_at = stem.find_last_of('_');
+  size_t dims_at = type_at == std::string::npos ? std::string::npos : stem.find_last_of('_', type_at - 1);
+  if (dims_at == std::string::npos) {
     ADD_FAILURE() << path << ": name does not give dims and type";
     return false;
   }
-  out->name = path.substr(path.find_last_of('/') + 1);
+  std::string type = stem.substr(type_at + 1);
+  std::vector<uint32_t> dims;
+  std::string dims_text = stem.substr(dims_at + 1, type_at - dims_at - 1);
+  for (size_t start = 0; start <= dims_text.size();) {
+    size_t x = dims_text.find('x', start);
+    if (x == std::string::npos) x = dims_text.size();
+    dims.push_back(static_cast<uint32_t>(std::stoul(dims_text.substr(start, x - start))));
+    start = x + 1;
+  }
+  if (dims.size() < 2 || dims.size() > 3 || (type != "uint8" && type != "int16le" && type != "uint16le")) {
+    ADD_FAILURE() << path << ": name does not give dims and type";
+    return false;
+  }
   GridHeader& h = out->header;
   h = GridHeader{};
-  h.size_x = static_cast<uint32_t>(std::stoul(m[1]));
-  h.size_y = static_cast<uint32_t>(std::stoul(m[2]));
-  h.num_dims = m[3].matched ? 3 : 2;
-  if (m[3].matched) h.size_z = static_cast<uint32_t>(std::stoul(m[3]));
-  std::string type = m[4];
+  h.num_dims = static_cast<uint8_t>(dims.size());
+  h.size_x = dims[0];
+  h.size_y = dims[1];
+  if (dims.size() == 3) h.size_z = dims[2];
   h.sample_type = type == "uint8" ? SampleType::kUint8
                   : type == "int16le" ? SampleType::kInt16 : SampleType::kUint16;
   std::vector<uint8_t> packed = readFileOrFail(path);

@@ -4,7 +4,6 @@
 
 #include <fstream>
 #include <iterator>
-#include <regex>
 
 namespace mrsv::test {
 
@@ -25,18 +24,21 @@ std::vector<VectorEntry> manifestVectors() {
   std::ifstream in(sourcePath("conformance/manifest.json"));
   std::vector<VectorEntry> out;
   std::string line;
-  static const std::regex kFile("\"file\": \"([^\"]+)\"");
-  static const std::regex kValid("\"valid\": (true|false)");
-  static const std::regex kError("\"error\": ([0-9]+)");
-  static const std::regex kOffset("\"offset\": ([0-9]+)");
+  // The value after "key": up to the next ',' or '"' (strings lose their quotes).
+  auto field = [](const std::string& text, const std::string& key) -> std::string {
+    size_t at = text.find("\"" + key + "\": ");
+    if (at == std::string::npos) return {};
+    at += key.size() + 4;
+    if (at < text.size() && text[at] == '"') return text.substr(at + 1, text.find('"', at + 1) - at - 1);
+    return text.substr(at, text.find_first_of(",}", at) - at);
+  };
   while (std::getline(in, line)) {
-    std::smatch m;
-    if (!std::regex_search(line, m, kFile)) continue;
     VectorEntry e;
-    e.file = m[1];
-    if (std::regex_search(line, m, kValid)) e.valid = m[1] == "true";
-    if (std::regex_search(line, m, kError)) e.error = std::stoi(m[1]);
-    if (std::regex_search(line, m, kOffset)) e.offset = std::stoull(m[1]);
+    e.file = field(line, "file");
+    if (e.file.empty()) continue;
+    e.valid = field(line, "valid") == "true";
+    if (std::string v = field(line, "error"); !v.empty()) e.error = std::stoi(v);
+    if (std::string v = field(line, "offset"); !v.empty()) e.offset = std::stoull(v);
     out.push_back(e);
   }
   return out;

@@ -29,7 +29,8 @@ Error checkSignature(const uint8_t* data, size_t size) {
        "the high bit of the first byte was cleared (7-bit transfer)"},
   };
   size_t n = size < sizeof kSignature ? size : sizeof kSignature;
-  if (std::memcmp(data, kSignature, n) == 0) {
+  // n == 0 is tested first: memcmp may not be given a null pointer, even for 0 bytes.
+  if (n == 0 || std::memcmp(data, kSignature, n) == 0) {
     if (size < kFileHeaderSize)
       return fail(Status::kTruncatedFileHeader, size, "file_header",
                   "file ends after " + std::to_string(size) + " of the 12 file header bytes");

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target of a fuzz build for SECONDS each, seeded from the
+# conformance vectors and the committed corpus. New inputs go to a scratch
+# corpus; crashes are written to fuzz/findings/ and fail the run.
+# Usage: fuzz/run_fuzz.sh BUILD_DIR SECONDS [TARGET...]
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+build=$1 seconds=$2
+shift 2
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode)
+findings=$here/findings
+mkdir -p "$findings"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+for t in "${targets[@]}"; do
+  mkdir -p "$scratch/$t"
+  echo "fuzz: $t for $seconds s"
+  if ! "$build/fuzz/$t" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
+      -artifact_prefix="$findings/$t-" -print_final_stats=1 \
+      "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
+      "$here/corpus" >"$scratch/$t.log" 2>&1; then
+    echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
+    tail -40 "$scratch/$t.log"
+    status=1
+  else
+    grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "$scratch/$t.log" | sed "s/^/fuzz: $t /"
+  fi
+done
+exit $status

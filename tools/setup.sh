@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Set-up for MRSV on Debian 12: installs the Debian packages the project needs
+# when they are missing, then configures and builds the Release tree in build/.
+# As root it runs apt-get itself; otherwise it prints the one line to run and stops.
+# Both README commands start with this step.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+packages=(
+  g++ cmake ninja-build pkg-config          # toolchain
+  libeigen3-dev libcgal-dev libtet1.5-dev   # linear algebra, geometry, tetrahedralisation
+  libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
+  clang libclang-rt-14-dev                  # libFuzzer and the sanitizer runtimes
+  zstd libzstd-dev                          # the ../shared/data files are zstd frames
+  python3                                   # conformance runner and vector generator
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "setup: missing Debian packages. Run this, then try again:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+if [ ! -d "$root/../shared/data" ]; then
+  echo "setup: warning: ../shared/data is not beside the project; the tests on real data will fail" >&2
+fi
+
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+if [ ! -f "$root/build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+echo "setup: building (Release) in build/"
+log=$(mktemp)
+if ! cmake --build "$root/build" -j "$(nproc)" >"$log" 2>&1; then
+  grep -E "error|Error" "$log" | head -40 >&2
+  rm -f "$log"
+  echo "setup: the build failed" >&2
+  exit 1
+fi
+rm -f "$log"
