@@ -82,6 +82,7 @@ std::string sizeText(const GridHeader& h) {
 std::string summary(const DecodedGrid& grid) {
   if (grid.container.chunks.empty()) return "empty prefix (file header only)";
   const GridHeader& h = grid.header;
+  if (h.num_dims == 0) return "content header not readable";
   std::string s = "grid " + std::to_string(h.num_dims) + "-D " + sampleTypeName(h.sample_type) +
                   " " + sizeText(h) + ", stored";
   if (h.hasNodata()) s += ", nodata " + nodataText(h);

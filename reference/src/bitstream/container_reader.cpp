@@ -1,4 +1,5 @@
 // spec: 2 (container). Framing only; chunk payloads are parsed elsewhere.
+#include <cassert>
 #include <cstring>
 
 #include "common/byte_reader.h"
@@ -80,6 +81,8 @@ bool isKnownCriticalChunk(const ChunkType& type) {
 
 Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,
                     Container* out) {
+  // API misuse, not bad input: asserted in debug builds (spec Annex A.3).
+  assert(out != nullptr && (data != nullptr || size == 0));
   *out = Container{};
   if (Error e = checkSignature(data, size); !e.ok()) return e;
 
