@@ -90,11 +90,12 @@ def meta(entries):
     return "".join(f"{k}={v}\n" for k, v in entries).encode("utf-8")
 
 
-def canonical(stype, dims, samples):
+def canonical(stype, dims, samples, nodata_bits=None):
     """spec 3.4 canonical output; `samples` is None for a prefix before GRAW."""
     sizes = list(dims) + [1] * (3 - len(dims))
     count = 0 if samples is None else sizes[0] * sizes[1] * sizes[2]
-    line = f"mrsv-canonical-grid 1 {stype} {len(dims)} {sizes[0]} {sizes[1]} {sizes[2]} {count}\n"
+    nodata = "-" if nodata_bits is None else "%016x" % nodata_bits
+    line = f"mrsv-canonical-grid 1 {stype} {len(dims)} {sizes[0]} {sizes[1]} {sizes[2]} {count} {nodata}\n"
     return line.encode("ascii") + (samples or b"")
 
 
@@ -169,7 +170,7 @@ def build():
     assert -32768 in array.array("h", fuji), "the Fuji window must hold voids"
     v.valid("terrain_int16_nodata",
             H + chunk("GHDR", ghdr("int16", fuji_dims, nodata_bits=0x8000)) + chunk("GRAW", fuji) + MEND,
-            canonical("int16", fuji_dims, fuji), "3.1",
+            canonical("int16", fuji_dims, fuji, nodata_bits=0x8000), "3.1",
             "SRTM window at Mt. Fuji's summit with voids; nodata -32768 comes back exactly")
 
     head_dims = [8, 8, 8]
@@ -196,7 +197,7 @@ def build():
     floats = pack("float32", [0.0, -0.0, 1.5, -3.25e-38]) + nan_bits + pack("float32", [float("inf"), -float("inf"), 8848.86, 1e-45])
     v.valid("grid_float32_special",
             H + chunk("GHDR", ghdr("float32", [3, 3], nodata_bits=0x7FC00001)) + chunk("GRAW", floats) + MEND,
-            canonical("float32", [3, 3], floats), "3.1, 3.3",
+            canonical("float32", [3, 3], floats, nodata_bits=0x7FC00001), "3.1, 3.3",
             "float32 samples with -0, a NaN payload (also the nodata value), infinities and a subnormal")
 
     doubles = pack("float64", [0.1 * i - 0.35 for i in range(12)])
@@ -292,6 +293,8 @@ def build():
                 "size_x above 2^24")
     header_case("too_many_samples", ghdr("uint8", [1 << 24, 1 << 24]), 201, "bad_grid_header", 20,
                 "2^48 samples, above the 2^32 limit")
+    header_case("too_many_samples_3d", ghdr("uint8", [1 << 24, 1 << 24, 1 << 24]), 201, "bad_grid_header",
+                20, "2^72 samples: the product must not wrap at 2^64")
     header_case("bad_sample_type", ghdr("uint8", [1], raw_type=9), 201, "bad_grid_header", 21,
                 "sample_type 9")
     header_case("unsupported_coding", ghdr("uint8", [1], coding=7), 202, "unsupported_coding", 22,

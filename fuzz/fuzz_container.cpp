@@ -15,9 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Invariants of a framed chunk: inside the input, in order, not overlapping.
     if (chunk.offset < end || chunk.endOffset() > size) std::abort();
     end = chunk.endOffset();
-    if (chunk.type == mrsv::kChunkMeta) {
+    if (chunk.chunk_type == mrsv::kChunkMeta) {
       mrsv::Metadata metadata;
-      (void)mrsv::parseMetadata(chunk.payload, chunk.length, chunk.payloadOffset(), &metadata);
+      (void)mrsv::parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &metadata);
     }
   }
   if (!e.ok() && (e.status == mrsv::Status::kOk || e.offset > size || e.message.empty())) std::abort();

@@ -52,10 +52,10 @@ TEST(ContainerReader, ReadsAValidFile) {
   ASSERT_TRUE(read(sampleFile(), &c).ok());
   EXPECT_TRUE(c.complete);
   ASSERT_EQ(c.chunks.size(), 3u);
-  EXPECT_EQ(c.chunks[0].type, kChunkGridHeader);
+  EXPECT_EQ(c.chunks[0].chunk_type, kChunkGridHeader);
   EXPECT_EQ(c.chunks[0].offset, 12u);
-  EXPECT_EQ(c.chunks[1].type, kChunkMeta);
-  EXPECT_EQ(c.chunks[2].length, 1u);
+  EXPECT_EQ(c.chunks[1].chunk_type, kChunkMeta);
+  EXPECT_EQ(c.chunks[2].chunk_length, 1u);
   EXPECT_EQ(c.end_chunk_offset, sampleFile().size() - 12);
 }
 

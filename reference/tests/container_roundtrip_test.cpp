@@ -14,7 +14,7 @@ TEST(ContainerWriter, WhatItWritesReadsBack) {
   Container c;
   ASSERT_TRUE(readContainer(f.data(), f.size(), ContainerOptions{}, &c).ok());
   ASSERT_EQ(c.chunks.size(), 3u);
-  EXPECT_EQ(c.chunks[1].length, 3u);
+  EXPECT_EQ(c.chunks[1].chunk_length, 3u);
   EXPECT_EQ(c.chunks[2].payload[999], 7);
   EXPECT_TRUE(c.complete);
   // A finished writer starts over with a fresh file header.

@@ -73,3 +73,17 @@ TEST(Metadata, EntryCountLimit) {
 
 }  // namespace
 }  // namespace mrsv
+
+namespace mrsv {
+namespace {
+
+// spec 2.6 number grammar, independent of the locale.
+TEST(Metadata, NumberListGrammar) {
+  for (const char* good : {"1", "-2.5", "+.5", "1.", "1e3", "6.02E+23,1,-0", "30,30"})
+    EXPECT_TRUE(metadataEntryProblem("spacing", good).empty()) << good;
+  for (const char* bad : {"", ".", "e5", "1e", "1,,2", "1,", "0x10", "inf", "nan", "1 2", "1.2.3"})
+    EXPECT_FALSE(metadataEntryProblem("origin", bad).empty()) << bad;
+}
+
+}  // namespace
+}  // namespace mrsv

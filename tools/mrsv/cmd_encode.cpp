@@ -137,14 +137,14 @@ int runEncode(int argc, char** argv) {
     if (metadata.find(key)) return fail(cmd, "--meta: key '" + key + "' given twice", kExitUsage);
     metadata.entries.emplace_back(key, value);
   }
+  if (std::string problem = gridHeaderProblem(header); !problem.empty())
+    return fail(cmd, "--dims: " + problem, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
 
   Progress progress("encode", args.flag("quiet"));
   std::vector<uint8_t> samples;
   if (!readWholeFile(in, &samples, &error)) return fail(cmd, in + ": " + error, kExitIo);
   progress.update(0.3);
-  if (std::string problem = gridHeaderProblem(header); !problem.empty())
-    return fail(cmd, "--dims: " + problem, kExitUsage);
   uint64_t expected = header.sampleCount() * sampleSize(header.sample_type);
   if (samples.size() != expected)
     return fail(cmd, in + ": file has " + std::to_string(samples.size()) + " bytes but --dims " +

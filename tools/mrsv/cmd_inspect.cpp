@@ -114,7 +114,7 @@ void printJson(const std::string& file, size_t file_size, const DecodedGrid& gri
   std::printf("{\n  \"file\": %s,\n  \"bytes\": %zu,\n", jsonString(file).c_str(), file_size);
   std::printf("  \"version\": \"%u.%u\",\n  \"complete\": %s,\n", c.version_major,
               c.version_minor, c.complete ? "true" : "false");
-  if (!c.chunks.empty() && c.chunks[0].type == kChunkGridHeader && grid.header.num_dims) {
+  if (!c.chunks.empty() && c.chunks[0].chunk_type == kChunkGridHeader && grid.header.num_dims) {
     const GridHeader& h = grid.header;
     std::printf("  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
                 "\"coding\": \"stored\"",
@@ -126,7 +126,7 @@ void printJson(const std::string& file, size_t file_size, const DecodedGrid& gri
   for (size_t i = 0; i < c.chunks.size(); ++i) {
     const ChunkView& k = c.chunks[i];
     std::printf("%s\n    {\"offset\": %" PRIu64 ", \"type\": \"%s\", \"length\": %u, \"crc\": \"%08x\"}",
-                i ? "," : "", k.offset, k.type.str().c_str(), k.length, k.crc);
+                i ? "," : "", k.offset, k.chunk_type.str().c_str(), k.chunk_length, k.chunk_crc);
   }
   if (c.complete)
     std::printf("%s\n    {\"offset\": %" PRIu64 ", \"type\": \"MEND\", \"length\": 0}",
@@ -152,8 +152,8 @@ void printTable(const std::string& file, size_t file_size, const DecodedGrid& gr
   std::printf("content:  %s\n", summary(grid).c_str());
   std::printf("chunks:\n  %10s  %-4s  %10s  %-8s  %s\n", "offset", "type", "length", "crc32c", "role");
   for (const ChunkView& k : c.chunks)
-    std::printf("  %10" PRIu64 "  %-4s  %10u  %08x  %s\n", k.offset, k.type.str().c_str(), k.length,
-                k.crc, chunkRole(k.type).c_str());
+    std::printf("  %10" PRIu64 "  %-4s  %10u  %08x  %s\n", k.offset, k.chunk_type.str().c_str(), k.chunk_length,
+                k.chunk_crc, chunkRole(k.chunk_type).c_str());
   if (c.complete)
     std::printf("  %10" PRIu64 "  %-4s  %10u  %-8s  %s\n", c.end_chunk_offset, "MEND", 0u, "", "end");
   if (!grid.metadata.entries.empty()) {

@@ -43,13 +43,13 @@ bool isKnownCriticalChunk(const ChunkType& type);
 
 // One framed chunk, borrowed from the file's bytes.
 struct ChunkView {
-  ChunkType type{};
+  ChunkType chunk_type{};
+  uint32_t chunk_length = 0;
+  uint32_t chunk_crc = 0;        // as stored
   uint64_t offset = 0;           // offset of chunk_type in the file
   const uint8_t* payload = nullptr;
-  uint32_t length = 0;           // chunk_length
-  uint32_t crc = 0;              // chunk_crc as stored
   uint64_t payloadOffset() const { return offset + kChunkHeaderSize; }
-  uint64_t endOffset() const { return offset + kChunkHeaderSize + length + kChunkCrcSize; }
+  uint64_t endOffset() const { return offset + kChunkHeaderSize + chunk_length + kChunkCrcSize; }
 };
 
 struct ContainerOptions {

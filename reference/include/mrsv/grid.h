@@ -44,6 +44,7 @@ struct GridHeader {
   uint32_t size_x = 1, size_y = 1, size_z = 1;
   uint64_t nodata_bits = 0;  // the no-data value's bit pattern, zero-extended
 
+  // Exact once gridHeaderProblem() has accepted the header (at most 2^32).
   uint64_t sampleCount() const { return uint64_t{size_x} * size_y * size_z; }
   bool hasNodata() const { return (grid_flags & kGridFlagHasNodata) != 0; }
 };

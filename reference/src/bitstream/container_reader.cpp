@@ -19,7 +19,7 @@ Error fail(Status status, uint64_t offset, std::string field, std::string messag
 Error checkSignature(const uint8_t* data, size_t size) {
   struct Damage {
     uint8_t bytes[12];
-    size_t length;
+    size_t size;
     const char* what;
   };
   static const Damage kDamages[] = {
@@ -38,7 +38,7 @@ Error checkSignature(const uint8_t* data, size_t size) {
     return {};
   }
   for (const Damage& d : kDamages) {
-    if (size >= d.length && std::memcmp(data, d.bytes, d.length) == 0)
+    if (size >= d.size && std::memcmp(data, d.bytes, d.size) == 0)
       return fail(Status::kSignatureTransferDamage, 0, "file_header.signature",
                   std::string("signature damaged in transfer: ") + d.what);
   }
@@ -115,41 +115,41 @@ Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& op
     }
     ChunkView chunk;
     chunk.offset = pos;
-    std::memcpy(chunk.type.c, data + pos, 4);
+    std::memcpy(chunk.chunk_type.c, data + pos, 4);
     ByteReader length_reader(data + pos + 4, 4);
-    chunk.length = length_reader.u32();
-    if (!isChunkTypeSyntax(chunk.type))
+    chunk.chunk_length = length_reader.u32();
+    if (!isChunkTypeSyntax(chunk.chunk_type))
       return fail(Status::kBadChunkType, pos, "chunk_type",
-                  "'" + printable(chunk.type) + "' is not four ASCII letters");
-    if (chunk.length > kMaxChunkPayload)
-      return fail(Status::kOversizedChunk, pos + 4, chunk.type.str() + ".chunk_length",
-                  std::to_string(chunk.length) + " exceeds the limit of " +
+                  "'" + printable(chunk.chunk_type) + "' is not four ASCII letters");
+    if (chunk.chunk_length > kMaxChunkPayload)
+      return fail(Status::kOversizedChunk, pos + 4, chunk.chunk_type.str() + ".chunk_length",
+                  std::to_string(chunk.chunk_length) + " exceeds the limit of " +
                       std::to_string(kMaxChunkPayload) + " bytes");
-    uint64_t needed = uint64_t{kChunkHeaderSize} + chunk.length + kChunkCrcSize;
+    uint64_t needed = uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize;
     if (needed > remaining) {
       if (options.allow_partial_tail) {
         out->ignored_tail_bytes = remaining;
         return {};
       }
-      return fail(Status::kChunkPastEnd, pos + 4, chunk.type.str() + ".chunk_length",
+      return fail(Status::kChunkPastEnd, pos + 4, chunk.chunk_type.str() + ".chunk_length",
                   "chunk needs " + std::to_string(needed) + " bytes but only " +
                       std::to_string(remaining) + " remain (file truncated or length damaged)");
     }
     chunk.payload = data + pos + kChunkHeaderSize;
-    ByteReader crc_reader(chunk.payload + chunk.length, 4);
-    chunk.crc = crc_reader.u32();
+    ByteReader crc_reader(chunk.payload + chunk.chunk_length, 4);
+    chunk.chunk_crc = crc_reader.u32();
     if (options.verify_checksums) {
-      uint32_t computed = crc32c(0, data + pos, kChunkHeaderSize + chunk.length);
-      if (computed != chunk.crc)
-        return fail(Status::kChecksumMismatch, chunk.payloadOffset() + chunk.length,
-                    chunk.type.str() + ".chunk_crc", "CRC-32C of the chunk does not match");
+      uint32_t computed = crc32c(0, data + pos, kChunkHeaderSize + chunk.chunk_length);
+      if (computed != chunk.chunk_crc)
+        return fail(Status::kChecksumMismatch, chunk.payloadOffset() + chunk.chunk_length,
+                    chunk.chunk_type.str() + ".chunk_crc", "CRC-32C of the chunk does not match");
     }
     if (++count > kMaxChunks)
       return fail(Status::kTooManyChunks, pos, "chunk",
                   "more than " + std::to_string(kMaxChunks) + " chunks");
 
-    if (chunk.type == kChunkEnd) {
-      if (chunk.length != 0)
+    if (chunk.chunk_type == kChunkEnd) {
+      if (chunk.chunk_length != 0)
         return fail(Status::kBadChunkLength, pos + 4, "MEND.chunk_length",
                     "MEND must have an empty payload");
       if (out->chunks.empty())
@@ -162,16 +162,16 @@ Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& op
                     std::to_string(size - end) + " bytes follow the MEND chunk");
       return {};
     }
-    if (chunk.type.critical() && !isKnownCriticalChunk(chunk.type))
+    if (chunk.chunk_type.critical() && !isKnownCriticalChunk(chunk.chunk_type))
       return fail(Status::kUnknownCriticalChunk, pos, "chunk_type",
-                  "critical chunk '" + chunk.type.str() + "' is not known to this decoder");
-    bool header_chunk = isContentHeader(chunk.type);
+                  "critical chunk '" + chunk.chunk_type.str() + "' is not known to this decoder");
+    bool header_chunk = isContentHeader(chunk.chunk_type);
     if (out->chunks.empty() && !header_chunk)
-      return fail(Status::kChunkOrder, pos, chunk.type.str(),
+      return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(),
                   "the first chunk must be a content header (GHDR)");
     if (!out->chunks.empty() && header_chunk)
-      return fail(Status::kChunkOrder, pos, chunk.type.str(), "a second content header");
-    if (chunk.type == kChunkMeta) {
+      return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(), "a second content header");
+    if (chunk.chunk_type == kChunkMeta) {
       if (seen_meta) return fail(Status::kChunkOrder, pos, "meta", "more than one meta chunk");
       seen_meta = true;
     }

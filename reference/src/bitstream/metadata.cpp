@@ -1,7 +1,6 @@
 // spec: 2.6 meta chunk.
 #include "mrsv/metadata.h"
 
-#include <cstdlib>
 
 #include "mrsv/limits.h"
 
@@ -37,6 +36,30 @@ size_t utf8SequenceLength(const std::string& s, size_t i) {
   return n;
 }
 
+// spec: 2.6 number = [+-] (digits [. digits] | . digits) [(e|E) [+-] digits].
+// Checked by grammar, not strtod, so that the host's locale cannot matter.
+bool isDecimalNumber(const std::string& s) {
+  size_t i = 0, n = s.size();
+  auto digits = [&]() {
+    size_t start = i;
+    while (i < n && s[i] >= '0' && s[i] <= '9') ++i;
+    return i - start;
+  };
+  if (i < n && (s[i] == '+' || s[i] == '-')) ++i;
+  size_t whole = digits(), fraction = 0;
+  if (i < n && s[i] == '.') {
+    ++i;
+    fraction = digits();
+  }
+  if (whole + fraction == 0) return false;
+  if (i < n && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < n && (s[i] == '+' || s[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == n;
+}
+
 // spec: 2.6 registered keys whose values are lists of decimal numbers.
 bool isNumberListKey(const std::string& key) { return key == "spacing" || key == "origin"; }
 
@@ -47,13 +70,7 @@ bool isNumberList(const std::string& value) {
     std::string item = value.substr(start, comma == std::string::npos ? std::string::npos
                                                                        : comma - start);
     if (item.empty()) return false;
-    for (char ch : item)
-      if (!((ch >= '0' && ch <= '9') || ch == '-' || ch == '+' || ch == '.' || ch == 'e' ||
-            ch == 'E'))
-        return false;
-    char* end = nullptr;
-    std::strtod(item.c_str(), &end);
-    if (end != item.c_str() + item.size()) return false;
+    if (!isDecimalNumber(item)) return false;
     ++count;
     if (comma == std::string::npos) break;
     start = comma + 1;

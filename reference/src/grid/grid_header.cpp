@@ -54,7 +54,10 @@ std::string gridHeaderProblem(const GridHeader& h) {
     if (axis >= h.num_dims && sizes[axis] != 1)
       return std::string(kNames[axis]) + " must be 1 beyond num_dims";
   }
-  if (h.sampleCount() > kMaxGridSamples)
+  // Each size is below 2^25, so size_x*size_y fits in 64 bits; the third
+  // factor is checked by division so that the product cannot wrap.
+  uint64_t xy = uint64_t{h.size_x} * h.size_y;  // sizes are >= 1 here
+  if (xy > kMaxGridSamples || xy > kMaxGridSamples / h.size_z)
     return "size_x*size_y*size_z exceeds " + std::to_string(kMaxGridSamples) + " samples";
   if (h.grid_flags & ~kGridFlagHasNodata) return "reserved bits of grid_flags must be 0";
   size_t bits = 8 * sampleSize(h.sample_type);
@@ -68,11 +71,11 @@ Error parseGridHeader(const ChunkView& chunk, GridHeader* out) {
   auto fail = [&](Status s, uint64_t at, const char* field, std::string msg) {
     return Error{s, chunk.payloadOffset() + at, std::string("GHDR.") + field, std::move(msg)};
   };
-  if (chunk.length != kGridHeaderSize)
+  if (chunk.chunk_length != kGridHeaderSize)
     return Error{Status::kBadChunkLength, chunk.offset + 4, "GHDR.chunk_length",
                  "GHDR payload must be " + std::to_string(kGridHeaderSize) + " bytes, not " +
-                     std::to_string(chunk.length)};
-  ByteReader r(chunk.payload, chunk.length);
+                     std::to_string(chunk.chunk_length)};
+  ByteReader r(chunk.payload, chunk.chunk_length);
   GridHeader h;
   h.num_dims = r.u8();
   uint8_t sample_type = r.u8();
