@@ -1,0 +1,90 @@
+// Adaptive binary range decoder. spec: 5.6 (entropy decoding).
+//
+// A binary arithmetic coder with 11-bit adaptive probabilities and a 32-bit
+// range, byte-wise renormalisation and carry propagation in the encoder. All
+// arithmetic is on unsigned 32-bit integers, so any byte string decodes to
+// something (possibly garbage) without undefined behaviour; reading past the
+// end of the payload yields zero bytes and is counted, so that the caller can
+// report an overrun once per chunk (a sticky error, as in the byte reader).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace mrsv {
+
+constexpr int kProbabilityBits = 11;
+constexpr uint16_t kProbabilityOne = 1u << kProbabilityBits;
+constexpr uint16_t kProbabilityHalf = kProbabilityOne / 2;
+constexpr int kAdaptShift = 5;
+
+// The probability that the next bit is 0, in units of 2^-11; starts at one half.
+struct BitModel {
+  uint16_t p0 = kProbabilityHalf;
+};
+
+class RangeDecoder {
+ public:
+  RangeDecoder(const uint8_t* data, size_t size);
+
+  // spec: 5.6 decode_bit(); adapts `model`.
+  int bit(BitModel* model) {
+    uint32_t bound = (range_ >> kProbabilityBits) * model->p0;
+    int result;
+    if (code_ < bound) {
+      range_ = bound;
+      model->p0 = static_cast<uint16_t>(model->p0 + ((kProbabilityOne - model->p0) >> kAdaptShift));
+      result = 0;
+    } else {
+      code_ -= bound;
+      range_ -= bound;
+      model->p0 = static_cast<uint16_t>(model->p0 - (model->p0 >> kAdaptShift));
+      result = 1;
+    }
+    normalize();
+    return result;
+  }
+
+  // spec: 5.6 decode_direct(n): n equiprobable bits, most significant first.
+  uint32_t direct(int n) {
+    uint32_t value = 0;
+    while (n--) {
+      range_ >>= 1;
+      uint32_t b = code_ >= range_ ? 1u : 0u;
+      code_ -= range_ & (0u - b);
+      value = (value << 1) | b;
+      normalize();
+    }
+    return value;
+  }
+
+  // Bytes wanted beyond the payload so far (0 for a well-formed stream).
+  size_t overrun() const { return overrun_; }
+  // Payload bytes read so far (a complete stream ends with consumed() == size).
+  size_t consumed() const { return pos_; }
+  // The first byte of every coded payload is 0 (spec 5.6); false otherwise.
+  bool validStart() const { return valid_start_; }
+
+ private:
+  void normalize() {
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      code_ = (code_ << 8) | nextByte();
+    }
+  }
+  uint32_t nextByte() {
+    if (pos_ < size_) return data_[pos_++];
+    ++overrun_;
+    return 0;
+  }
+
+  const uint8_t* data_;
+  size_t size_;
+  size_t pos_ = 0;
+  size_t overrun_ = 0;
+  uint32_t range_ = 0xFFFFFFFFu;
+  uint32_t code_ = 0;
+  bool valid_start_ = true;
+};
+
+}  // namespace mrsv

@@ -1,0 +1,205 @@
+// Context modelling of integer arrays (quantised bands, residuals). spec: 5.7.
+//
+// One template walks an array and decides every binary symbol and its
+// context; it is instantiated with the range decoder (normative) and with the
+// range encoder, so that the two cannot drift apart. In encoding mode the
+// values are read from `values`; in decoding mode they are written there.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+
+#include "bitstream/range_decoder.h"
+
+namespace mrsv {
+
+// The box of an array: x fastest, then y, then z; unused axes have size 1.
+struct ArrayBox {
+  uint32_t size[3] = {1, 1, 1};
+  int num_dims = 1;
+  uint64_t count() const { return uint64_t{size[0]} * size[1] * size[2]; }
+};
+
+// spec: 5.7.1 coding modes of an array.
+enum class ArrayPrediction : uint8_t {
+  kNone = 0,      // values coded as they are (detail bands, residuals)
+  kNeighbour = 1, // each value coded as the difference to a prediction from its
+                  // decoded neighbours (the coarsest scaling block)
+};
+
+constexpr int kMagnitudeClasses = 7;
+constexpr int kMagnitudeModels = 12;
+constexpr int kMaxMagnitudeBits = 40;  // coded symbols satisfy |s| < 2^40
+// spec: 5.7.4 decoded values are clamped to +-kArrayValueLimit, so that garbage
+// cannot grow through the predictor; an encoder never needs the clamp.
+constexpr int64_t kArrayValueLimit = (int64_t{1} << 40) - 1;
+
+inline int64_t clampArrayValue(int64_t v) {
+  return v > kArrayValueLimit ? kArrayValueLimit : v < -kArrayValueLimit ? -kArrayValueLimit : v;
+}
+
+struct ArrayContexts {
+  BitModel block[8];
+  BitModel zero[kMagnitudeClasses];
+  BitModel sign[3];
+  BitModel magnitude[kMagnitudeClasses][kMagnitudeModels];
+};
+
+// spec: 5.7.2 block edge per dimensionality: 64 samples (1-D), 8x8 (2-D), 4x4x4 (3-D).
+inline uint32_t blockEdge(int num_dims) { return num_dims == 1 ? 64 : num_dims == 2 ? 8 : 4; }
+
+// spec: 5.7.3 magnitude class from the sum of the neighbours' magnitudes.
+inline int magnitudeClass(uint64_t s) {
+  if (s <= 2) return static_cast<int>(s);
+  if (s <= 4) return 3;
+  if (s <= 8) return 4;
+  if (s <= 32) return 5;
+  return 6;
+}
+
+inline uint64_t magnitudeOf(int64_t v) {
+  return v < 0 ? uint64_t(0) - static_cast<uint64_t>(v) : static_cast<uint64_t>(v);
+}
+
+inline int64_t medianPredictor(int64_t a, int64_t b, int64_t c) {
+  int64_t lo = a < b ? a : b, hi = a < b ? b : a;
+  if (c >= hi) return lo;
+  if (c <= lo) return hi;
+  return a + b - c;
+}
+
+// spec: 5.7.4 prediction of value (x, y, z) from decoded values of the array.
+inline int64_t predictNeighbour(const int64_t* v, const ArrayBox& box, uint32_t x, uint32_t y,
+                                uint32_t z) {
+  const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
+  const size_t i = x + y * sx + z * sxy;
+  auto at = [&](size_t dx, size_t dy, size_t dz) { return v[i - dx - dy * sx - dz * sxy]; };
+  if (z == 0) {
+    if (x > 0 && y > 0) return medianPredictor(at(1, 0, 0), at(0, 1, 0), at(1, 1, 0));
+    if (x > 0) return at(1, 0, 0);
+    if (y > 0) return at(0, 1, 0);
+    return 0;
+  }
+  // Lorenzo predictor: exact on trilinear data; seven terms below 2^40, no overflow.
+  if (x > 0 && y > 0)
+    return at(1, 0, 0) + at(0, 1, 0) + at(0, 0, 1) - at(1, 1, 0) - at(1, 0, 1) - at(0, 1, 1) +
+           at(1, 1, 1);
+  if (x > 0) return at(1, 0, 0) + at(0, 0, 1) - at(1, 0, 1);
+  if (y > 0) return at(0, 1, 0) + at(0, 0, 1) - at(0, 1, 1);
+  return at(0, 0, 1);
+}
+
+// Codes one value's symbol `s` (the value or its prediction residual) with
+// contexts from the already coded symbols `sym` around it. Returns false when a
+// decoded magnitude prefix is longer than kMaxMagnitudeBits - 1 (spec 5.7.3).
+template <class Coder>
+bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t* sym, const ArrayBox& box, uint32_t x,
+                uint32_t y, uint32_t z) {
+  const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
+  const size_t i = x + y * sx + z * sxy;
+  int64_t left = x > 0 ? sym[i - 1] : 0;
+  uint64_t around = magnitudeOf(left) + (y > 0 ? magnitudeOf(sym[i - sx]) : 0) +
+                    (z > 0 ? magnitudeOf(sym[i - sxy]) : 0);
+  int cls = magnitudeClass(around);
+  int64_t value = Coder::kEncoding ? sym[i] : 0;
+  uint64_t mag = magnitudeOf(value);
+  if (coder.bit(&ctx.zero[cls], mag != 0) == 0) {
+    sym[i] = 0;
+    return true;
+  }
+  int sign_ctx = left == 0 ? 0 : left > 0 ? 1 : 2;
+  int negative = coder.bit(&ctx.sign[sign_ctx], value < 0);
+  // |s| - 1 as an Elias-gamma-like code: the bit length of |s| in adaptive
+  // unary, then the bits below its leading one, equiprobable.
+  int length = 0;  // floor(log2(|s|))
+  if (Coder::kEncoding)
+    while ((mag >> (length + 1)) != 0) ++length;
+  int n = 0;
+  while (true) {
+    BitModel* m = &ctx.magnitude[cls][n < kMagnitudeModels ? n : kMagnitudeModels - 1];
+    if (coder.bit(m, n < length) == 0) break;
+    if (++n == kMaxMagnitudeBits - 1) return false;
+  }
+  uint64_t low = 0;
+  for (int done = 0; done < n;) {
+    int chunk = n - done > 24 ? 24 : n - done;
+    uint32_t part = static_cast<uint32_t>((mag >> (n - done - chunk)) & ((1u << chunk) - 1));
+    low = (low << chunk) | coder.direct(part, chunk);
+    done += chunk;
+  }
+  uint64_t decoded = (uint64_t{1} << n) | low;
+  sym[i] = negative ? -static_cast<int64_t>(decoded) : static_cast<int64_t>(decoded);
+  return true;
+}
+
+// spec: 5.7 array(): codes every value of `values` over `box`, block by block.
+// `skip` (may be null) marks positions that are not coded and hold 0 (an
+// encoder must pass 0 there too, since predictions read them).
+// `symbols` is scratch of box.count() entries. Returns false on a decoding error.
+template <class Coder>
+bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& box,
+               ArrayPrediction prediction, const uint8_t* skip) {
+  ArrayContexts ctx;
+  const uint32_t edge = blockEdge(box.num_dims);
+  const uint32_t bx = (box.size[0] + edge - 1) / edge;
+  const uint32_t by = box.num_dims >= 2 ? (box.size[1] + edge - 1) / edge : 1;
+  const uint32_t bz = box.num_dims >= 3 ? (box.size[2] + edge - 1) / edge : 1;
+  const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
+  // One flag per block: nonzero[] of the previous block row and slice give contexts.
+  uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(size_t{bx} * by * bz, 1));
+  if (!nonzero) return false;
+  bool ok = true;
+  for (uint32_t kz = 0; kz < bz && ok; ++kz)
+    for (uint32_t ky = 0; ky < by && ok; ++ky)
+      for (uint32_t kx = 0; kx < bx && ok; ++kx) {
+        const uint32_t x0 = kx * edge, y0 = ky * edge, z0 = kz * edge;
+        const uint32_t x1 = box.size[0] < x0 + edge ? box.size[0] : x0 + edge;
+        const uint32_t y1 = box.num_dims >= 2 ? (box.size[1] < y0 + edge ? box.size[1] : y0 + edge) : 1;
+        const uint32_t z1 = box.num_dims >= 3 ? (box.size[2] < z0 + edge ? box.size[2] : z0 + edge) : 1;
+        const size_t b = kx + size_t{bx} * (ky + size_t{by} * kz);
+        if (Coder::kEncoding) {
+          for (uint32_t z = z0; z < z1; ++z)
+            for (uint32_t y = y0; y < y1; ++y)
+              for (uint32_t x = x0; x < x1; ++x) {
+                size_t i = x + y * sx + z * sxy;
+                int64_t s = values[i];
+                if (prediction == ArrayPrediction::kNeighbour) s -= predictNeighbour(values, box, x, y, z);
+                if (skip && skip[i]) s = 0;
+                symbols[i] = s;
+                if (s != 0) nonzero[b] = 1;
+              }
+        }
+        int c = (kx > 0 && nonzero[b - 1]) | ((ky > 0 && nonzero[b - bx]) << 1) |
+                ((kz > 0 && nonzero[b - size_t{bx} * by]) << 2);
+        nonzero[b] = static_cast<uint8_t>(coder.bit(&ctx.block[c], nonzero[b]));
+        for (uint32_t z = z0; z < z1 && ok; ++z)
+          for (uint32_t y = y0; y < y1 && ok; ++y)
+            for (uint32_t x = x0; x < x1; ++x) {
+              size_t i = x + y * sx + z * sxy;
+              if (!nonzero[b] || (skip && skip[i])) {
+                symbols[i] = 0;
+              } else if (!codeSymbol(coder, ctx, symbols, box, x, y, z)) {
+                ok = false;
+                break;
+              }
+              if (!Coder::kEncoding) {
+                values[i] = symbols[i];
+                if (prediction == ArrayPrediction::kNeighbour && !(skip && skip[i]))
+                  values[i] = clampArrayValue(values[i] + predictNeighbour(values, box, x, y, z));
+              }
+            }
+      }
+  std::free(nonzero);
+  return ok;
+}
+
+// Adapters giving both coders the same shape for codeArray.
+struct DecodingCoder {
+  static constexpr bool kEncoding = false;
+  RangeDecoder* rc;
+  int bit(BitModel* m, int) { return rc->bit(m); }
+  uint32_t direct(uint32_t, int n) { return rc->direct(n); }
+};
+
+}  // namespace mrsv
