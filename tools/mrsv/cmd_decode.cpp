@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "mrsv/file_io.h"
+#include "mrsv/grid_formats.h"
 #include "mrsv/grid.h"
 #include "mrsv/raw_grid.h"
 
@@ -13,13 +14,16 @@ namespace {
 const char kHelp[] =
     "Usage: mrsv decode [options] IN.mrsv OUT\n"
     "\n"
-    "Decode an MRSV grid to a headerless raw file of the stream's sample type\n"
-    "(x fastest, then y, then z).\n"
+    "Decode an MRSV grid. OUT is chosen by its extension: .nrrd (with a header),\n"
+    "  .pgm (2-D uint8 or uint16), or else a headerless raw file of the stream's sample\n"
+    "  type (x fastest, then y, then z).\n"
     "\n"
     "Options:\n"
     "  --endian little|big   byte order of OUT (default little)\n"
     "  --canonical           write the canonical output of spec 3.4 instead: the bytes\n"
     "                        whose SHA-256 the conformance suite compares\n"
+    "  --levels K            reduced resolution: stop the wavelet synthesis K levels above\n"
+    "                        the finest (about 1/2^K of the samples along each axis)\n"
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived: the complete chunks among them are decoded\n"
     "  --quiet               no progress or notes on stderr\n"
@@ -35,7 +39,7 @@ int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -54,12 +58,19 @@ int runDecode(int argc, char** argv) {
   uint64_t byte_limit = UINT64_MAX;
   if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
     return fail(cmd, "--bytes '" + args.value("bytes") + "' is not a whole number", kExitUsage);
+  uint64_t levels = 0;
+  if (args.has("levels") && (!parseUint64(args.value("levels"), &levels) || levels > 16))
+    return fail(cmd, "--levels '" + args.value("levels") + "' is not a whole number from 0 to 16",
+                kExitUsage);
+  if (levels > 0 && args.flag("canonical"))
+    return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
 
   Progress progress("decode", args.flag("quiet"));
   std::vector<uint8_t> bytes;
   if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
   DecodeOptions options;
+  options.reduce_levels = static_cast<int>(levels);
   if (byte_limit < bytes.size()) {
     bytes.resize(static_cast<size_t>(byte_limit));
     options.container.allow_partial_tail = true;
@@ -78,9 +89,15 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    output = std::move(grid.samples);
-    if (endian == Endian::kBig) swapSampleBytes(&output, sampleSize(grid.header.sample_type));
+    if (!encodeGridOutput(out, grid.header, grid.output_size, grid.samples, endian == Endian::kBig,
+                          &output, &error))
+      return fail(cmd, error, kExitUsage);
   }
+  if (!args.flag("quiet") && !args.flag("canonical") &&
+      (grid.output_size[0] != grid.header.size_x || grid.output_size[1] != grid.header.size_y ||
+       grid.output_size[2] != grid.header.size_z))
+    std::fprintf(stderr, "mrsv decode: %s: reduced resolution %ux%ux%u\n", out.c_str(),
+                 grid.output_size[0], grid.output_size[1], grid.output_size[2]);
   if (!grid.container.complete && !args.flag("quiet"))
     std::fprintf(stderr, "mrsv decode: %s: note: stream is a prefix (no MEND); decoded its %zu complete chunks\n",
                  in.c_str(), grid.container.chunks.size());

@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "cli.h"
 #include "commands.h"
 #include "mrsv/encode.h"
 #include "mrsv/file_io.h"
+#include "mrsv/grid_formats.h"
 #include "mrsv/raw_grid.h"
 
 namespace mrsv::cli {
@@ -18,16 +20,35 @@ const char kHelp[] =
     "Usage: mrsv encode [options] IN OUT.mrsv\n"
     "\n"
     "Encode a grid of samples (a terrain, an image, a volume) into an MRSV file.\n"
-    "IN is a headerless raw file: x varies fastest, then y, then z.\n"
+    "IN is chosen by its extension: .nrrd (attached header, raw encoding), .pgm (binary,\n"
+    "8 or 16 bit), .hgt (SRTM: square big-endian int16, voids -32768), or else a\n"
+    "headerless raw file (x fastest, then y, then z) described by --dims and --type.\n"
     "\n"
     "Input:\n"
-    "  --dims X[,Y[,Z]]      grid size in samples (required)\n"
-    "  --type T              sample type: uint8, int16, uint16, int32, float32, float64 (required)\n"
+    "  --dims X[,Y[,Z]]      grid size in samples (raw input)\n"
+    "  --type T              sample type: uint8, int16, uint16, int32, float32, float64 (raw input)\n"
     "  --endian little|big   byte order of IN (default little)\n"
     "  --nodata V            sample value that marks missing data, e.g. -32768 for SRTM voids\n"
     "\n"
-    "Coding:\n"
-    "  --coding stored       stored: lossless, uncompressed (default; the only coding of format 0.1)\n"
+    "Coding (default: wavelet, lossless):\n"
+    "  --coding wavelet|stored  wavelet: B-spline wavelet coding (spec 4, 5); stored: raw samples\n"
+    "  --order K             wavelet order 1..4: Haar, linear, quadratic, cubic (default 4)\n"
+    "  --levels L            at most L decomposition levels per axis (default 16; fewer on\n"
+    "                        short axes, so that padding stays under 1/32 of the axis)\n"
+    "  --lossless            every sample exact (integer samples; the default)\n"
+    "  --max-error D         every sample within D of the input (integer samples)\n"
+    "  --bits-per-sample R   the best quality within R bits per sample\n"
+    "  --psnr P              the smallest stream with PSNR >= P dB (peak: max - min)\n"
+    "  --step S              quantiser step S in sample units (no rate control)\n"
+    "  --keep F              global oracle: keep the fraction F (0 < F <= 1) of the\n"
+    "                        coefficients that contribute most to the L2 norm\n"
+    "\n"
+    "Region of interest (local oracle; with --step, --bits-per-sample, --psnr or --keep):\n"
+    "  --roi box:X0,Y0[,Z0],X1,Y1[,Z1] | ellipsoid:CX,CY[,CZ],RX,RY[,RZ]\n"
+    "                        in sample coordinates; every basis function reaching into\n"
+    "                        the region keeps its detail, with a step --roi-gain times finer\n"
+    "  --roi-falloff S       Gaussian falloff outside the region, in samples (default 16)\n"
+    "  --roi-gain G          how much finer the step is inside the region (default 8)\n"
     "\n"
     "Metadata (the meta chunk, spec 2.6):\n"
     "  --meta KEY=VALUE      add an entry; repeatable. Registered keys: value_units,\n"
@@ -39,6 +60,52 @@ const char kHelp[] =
     "\n"
     "OUT is written under a temporary name and renamed when complete; IN is never touched.\n"
     "Exit status: 0 done, 1 invalid input data, 2 usage error, 3 file error.\n";
+
+// "box:X0,Y0[,Z0],X1,Y1[,Z1]" or "ellipsoid:CX,CY[,CZ],RX,RY[,RZ]".
+bool parseRegion(const std::string& text, RegionOfInterest* roi, std::string* error) {
+  size_t colon = text.find(':');
+  std::string shape = text.substr(0, colon);
+  if (colon == std::string::npos || (shape != "box" && shape != "ellipsoid")) {
+    *error = "'" + text + "' must start with box: or ellipsoid:";
+    return false;
+  }
+  std::vector<double> v;
+  std::string rest = text.substr(colon + 1);
+  for (size_t start = 0; start <= rest.size();) {
+    size_t comma = rest.find(',', start);
+    if (comma == std::string::npos) comma = rest.size();
+    std::string item = rest.substr(start, comma - start);
+    char* end = nullptr;
+    double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(x)) {
+      *error = "'" + item + "' is not a number";
+      return false;
+    }
+    v.push_back(x);
+    start = comma + 1;
+  }
+  if (v.size() != 4 && v.size() != 6) {
+    *error = "give 2 or 3 coordinates for each of the two corners (box) or centre and semi-axes";
+    return false;
+  }
+  size_t dims = v.size() / 2;
+  roi->ellipsoid = shape == "ellipsoid";
+  for (size_t a = 0; a < dims; ++a) {
+    if (roi->ellipsoid) {
+      roi->center[a] = v[a];
+      roi->half_size[a] = v[dims + a];
+      if (!(roi->half_size[a] > 0)) {
+        *error = "semi-axes must be positive";
+        return false;
+      }
+    } else {
+      double lo = std::min(v[a], v[dims + a]), hi = std::max(v[a], v[dims + a]);
+      roi->center[a] = 0.5 * (lo + hi);
+      roi->half_size[a] = 0.5 * (hi - lo);
+    }
+  }
+  return true;
+}
 
 // Converts the --nodata text to the sample type's bit pattern.
 bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error) {
@@ -92,7 +159,10 @@ int runEncode(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"dims", "type", "endian", "nodata", "coding"}, {"quiet", "help"}, {"meta"}},
+                  {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
+                    "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain"},
+                   {"quiet", "help", "lossless"},
+                   {"meta"}},
                   &error))
     return fail(cmd, error + " (see 'mrsv encode --help')", kExitUsage);
   if (args.flag("help")) {
@@ -103,30 +173,84 @@ int runEncode(int argc, char** argv) {
     return fail(cmd, "expected IN and OUT.mrsv (see 'mrsv encode --help')", kExitUsage);
   const std::string& in = args.positional()[0];
   const std::string& out = args.positional()[1];
-  if (!args.has("dims") || !args.has("type"))
-    return fail(cmd, "raw input needs --dims and --type (see 'mrsv encode --help')", kExitUsage);
-
-  GridHeader header;
-  if (std::string problem = parseDims(args.value("dims"), &header); !problem.empty())
-    return fail(cmd, "--dims: " + problem, kExitUsage);
-  if (!parseSampleType(args.value("type"), &header.sample_type))
-    return fail(cmd, "--type '" + args.value("type") +
-                         "' is not one of uint8, int16, uint16, int32, float32, float64",
+  RawLayout raw;
+  if (args.has("dims") != args.has("type"))
+    return fail(cmd, "--dims and --type go together (see 'mrsv encode --help')", kExitUsage);
+  if (args.has("dims")) {
+    if (gridFormatOf(in) != GridFormat::kRaw)
+      return fail(cmd, "--dims and --type are for headerless raw input; " + in + " has a header",
+                  kExitUsage);
+    raw.has_layout = true;
+    if (std::string problem = parseDims(args.value("dims"), &raw.header); !problem.empty())
+      return fail(cmd, "--dims: " + problem, kExitUsage);
+    if (!parseSampleType(args.value("type"), &raw.header.sample_type))
+      return fail(cmd, "--type '" + args.value("type") +
+                           "' is not one of uint8, int16, uint16, int32, float32, float64",
+                  kExitUsage);
+    if (std::string problem = gridHeaderProblem(raw.header); !problem.empty())
+      return fail(cmd, "--dims: " + problem, kExitUsage);
+  } else if (gridFormatOf(in) == GridFormat::kRaw) {
+    return fail(cmd, "headerless raw input needs --dims and --type (see 'mrsv encode --help')",
                 kExitUsage);
-  Endian endian = Endian::kLittle;
+  }
   if (args.has("endian")) {
-    if (args.value("endian") == "big") endian = Endian::kBig;
+    if (args.value("endian") == "big") raw.big_endian = true;
     else if (args.value("endian") != "little")
       return fail(cmd, "--endian must be little or big", kExitUsage);
   }
-  if (args.has("coding") && args.value("coding") != "stored")
-    return fail(cmd, "--coding '" + args.value("coding") + "' is not known (format 0.1 has: stored)",
-                kExitUsage);
-  if (args.has("nodata")) {
-    if (!parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))
-      return fail(cmd, error, kExitUsage);
-    header.grid_flags |= kGridFlagHasNodata;
+  const std::string coding = args.has("coding") ? args.value("coding") : "wavelet";
+  if (coding != "stored" && coding != "wavelet")
+    return fail(cmd, "--coding '" + coding + "' is not one of wavelet, stored", kExitUsage);
+  WaveletEncodeOptions wavelet;
+  int targets = 0;
+  auto number = [&](const char* name, double lo, double hi, double* out) -> bool {
+    if (!args.has(name)) return true;
+    char* end = nullptr;
+    double v = std::strtod(args.value(name).c_str(), &end);
+    if (args.value(name).empty() || *end != '\0' || !(v >= lo && v <= hi)) {
+      error = std::string("--") + name + " '" + args.value(name) + "' must be a number from " +
+              std::to_string(lo) + " to " + std::to_string(hi);
+      return false;
+    }
+    *out = v;
+    ++targets;
+    return true;
+  };
+  double order = 4, levels = 16;
+  if (!number("max-error", 0, 524287, &wavelet.max_error) ||
+      !number("bits-per-sample", 1e-3, 64, &wavelet.bits_per_sample) ||
+      !number("psnr", 1, 400, &wavelet.psnr) || !number("step", 1e-12, 1e300, &wavelet.step) ||
+      !number("keep", 1e-9, 1, &wavelet.keep_fraction))
+    return fail(cmd, error, kExitUsage);
+  if (args.flag("lossless")) {
+    wavelet.max_error = 0;
+    ++targets;
   }
+  if (targets > 1)
+    return fail(cmd,
+                "give at most one of --lossless, --max-error, --bits-per-sample, --psnr, --step, --keep",
+                kExitUsage);
+  if (targets == 0) wavelet.max_error = 0;  // lossless by default
+  int rate_targets = targets;
+  if (!number("order", 1, 4, &order) || !number("levels", 0, 16, &levels) ||
+      !number("roi-falloff", 0, 1e9, &wavelet.roi.falloff) ||
+      !number("roi-gain", 1, 1e6, &wavelet.roi_gain))
+    return fail(cmd, error, kExitUsage);
+  targets = rate_targets;
+  if (args.has("roi")) {
+    if (!parseRegion(args.value("roi"), &wavelet.roi, &error)) return fail(cmd, "--roi: " + error, kExitUsage);
+    if (wavelet.max_error >= 0)
+      return fail(cmd, "--roi goes with --step, --bits-per-sample, --psnr or --keep (lossless and "
+                       "error-bounded coding are exact everywhere)", kExitUsage);
+    wavelet.has_roi = true;
+  }
+  if (order != std::floor(order) || levels != std::floor(levels))
+    return fail(cmd, "--order and --levels take whole numbers", kExitUsage);
+  wavelet.order = static_cast<int>(order);
+  wavelet.max_levels = static_cast<int>(levels);
+  if (coding == "stored" && (args.has("order") || args.has("levels") || args.has("max-error") ||
+                             args.has("bits-per-sample") || args.has("psnr") || args.has("step")))
+    return fail(cmd, "--coding stored takes no rate, quality or wavelet option", kExitUsage);
   Metadata metadata;
   for (const std::string& entry : args.values("meta")) {
     size_t eq = entry.find('=');
@@ -137,27 +261,44 @@ int runEncode(int argc, char** argv) {
     if (metadata.find(key)) return fail(cmd, "--meta: key '" + key + "' given twice", kExitUsage);
     metadata.entries.emplace_back(key, value);
   }
-  if (std::string problem = gridHeaderProblem(header); !problem.empty())
-    return fail(cmd, "--dims: " + problem, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
 
   Progress progress("encode", args.flag("quiet"));
-  std::vector<uint8_t> samples;
-  if (!readWholeFile(in, &samples, &error)) return fail(cmd, in + ": " + error, kExitIo);
-  progress.update(0.3);
-  uint64_t expected = header.sampleCount() * sampleSize(header.sample_type);
-  if (samples.size() != expected)
-    return fail(cmd, in + ": file has " + std::to_string(samples.size()) + " bytes but --dims " +
-                         args.value("dims") + " --type " + args.value("type") + " needs " +
-                         std::to_string(expected),
-                kExitInvalidData);
-  if (endian == Endian::kBig) swapSampleBytes(&samples, sampleSize(header.sample_type));
-
+  GridInput input;
+  if (!readGridInput(in, raw, &input, &error)) {
+    bool io = error.find("No such file") != std::string::npos ||
+              error.find("Permission denied") != std::string::npos ||
+              error.find("directory") != std::string::npos;
+    return fail(cmd, error, io ? kExitIo : kExitInvalidData);
+  }
+  progress.update(0.2);
+  GridHeader& header = input.header;
+  const std::vector<uint8_t>& samples = input.samples;
+  if (args.has("nodata")) {
+    if (!parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))
+      return fail(cmd, error, kExitUsage);
+    header.grid_flags |= kGridFlagHasNodata;
+  }
+  // What the file says first, then --meta (which wins).
+  Metadata merged = input.metadata;
+  for (const auto& [key, value] : metadata.entries) merged.set(key, value);
+  metadata = merged;
   std::vector<uint8_t> stream;
-  Error e = encodeStoredGrid(header, samples, metadata, &stream);
+  WaveletEncodeReport report;
+  Error e = coding == "stored" ? encodeStoredGrid(header, samples, metadata, &stream)
+                               : encodeWaveletGrid(header, samples, metadata, wavelet, &stream, &report);
   if (!e.ok()) return fail(cmd, in + ": " + e.field + ": " + e.message, kExitInvalidData);
-  progress.update(0.7);
+  progress.update(0.9);
   if (!writeFileAtomically(out, stream, &error)) return fail(cmd, out + ": " + error, kExitIo);
+  if (coding == "wavelet" && !args.flag("quiet")) {
+    std::fprintf(stderr,
+                 "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, "
+                 "%llu coefficients kept, L2 error %.6g (orthogonal estimate %.6g)\n",
+                 out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                 std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(),
+                 report.max_abs_error, static_cast<unsigned long long>(report.kept_coefficients),
+                 report.l2_error, report.l2_error_orthogonal_estimate);
+  }
   progress.update(1.0);
   return kExitOk;
 }

@@ -42,6 +42,10 @@ std::string chunkRole(const ChunkType& type) {
   if (type == kChunkGridHeader) return "grid header";
   if (type == kChunkGridStored) return "stored samples";
   if (type == kChunkMeta) return "metadata";
+  if (type == kChunkWaveletHeader) return "wavelet header";
+  if (type == kChunkNodataMask) return "no-data mask";
+  if (type == kChunkBand) return "band (coarse to fine)";
+  if (type == kChunkResidual) return "residual layer";
   if (type == kChunkEnd) return "end";
   return type.critical() ? "unknown critical" : "unknown ancillary (skipped)";
 }
@@ -84,7 +88,16 @@ std::string summary(const DecodedGrid& grid) {
   const GridHeader& h = grid.header;
   if (h.num_dims == 0) return "content header not readable";
   std::string s = "grid " + std::to_string(h.num_dims) + "-D " + sampleTypeName(h.sample_type) +
-                  " " + sizeText(h) + ", stored";
+                  " " + sizeText(h);
+  if (h.coding == GridCoding::kStored) {
+    s += ", stored";
+  } else {
+    const WaveletHeader& w = grid.wavelet;
+    s += ", wavelet order " + std::to_string(w.order) + ", levels " + std::to_string(w.levels[0]);
+    for (int a = 1; a < h.num_dims; ++a) s += "/" + std::to_string(w.levels[a]);
+    s += ", " + std::to_string(grid.bands_decoded) + "/" + std::to_string(grid.bands_total) + " bands";
+    if (w.hasResidual()) s += grid.residual_decoded ? ", residual" : ", residual missing";
+  }
   if (h.hasNodata()) s += ", nodata " + nodataText(h);
   s += ", " + std::to_string(grid.container.chunks.size() + (grid.container.complete ? 1 : 0)) +
        " chunks";
@@ -117,8 +130,10 @@ void printJson(const std::string& file, size_t file_size, const DecodedGrid& gri
   if (!c.chunks.empty() && c.chunks[0].chunk_type == kChunkGridHeader && grid.header.num_dims) {
     const GridHeader& h = grid.header;
     std::printf("  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
-                "\"coding\": \"stored\"",
-                h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z);
+                "\"coding\": \"%s\", \"bands\": [%u, %u]",
+                h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z,
+                h.coding == GridCoding::kStored ? "stored" : "wavelet", grid.bands_decoded,
+                grid.bands_total);
     if (h.hasNodata()) std::printf(", \"nodata\": %s", jsonString(nodataText(h)).c_str());
     std::printf("},\n");
   }
@@ -216,7 +231,11 @@ int runCheck(int argc, char** argv) {
       reportError(cmd, file, e);
       status = kExitInvalidData;
     } else if (!args.flag("quiet")) {
-      std::printf("%s: ok: %s\n", file.c_str(), summary(grid).c_str());
+      std::string recorded;
+      for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
+        if (const std::string* v = grid.metadata.find(key))
+          recorded += std::string(recorded.empty() ? "; recorded " : ", ") + key + "=" + *v;
+      std::printf("%s: ok: %s%s\n", file.c_str(), summary(grid).c_str(), recorded.c_str());
     }
   }
   return status;

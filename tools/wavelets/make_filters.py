@@ -20,6 +20,8 @@ true ones, P^T G Q = 0 and [P|Q] is invertible.
 
   python3 tools/wavelets/make_filters.py           write the three outputs
   python3 tools/wavelets/make_filters.py --check   fail if the committed files differ
+  python3 tools/wavelets/make_filters.py --golden  also print the golden hashes of an
+      independent Python fixed-point synthesis (spec 4.5) for wavelet_fixed_test.cpp
 
 Outputs: reference/src/wavelet/filter_tables.h, filter_tables.cpp and
 spec/tables/wavelet-filters.md.
@@ -386,7 +388,7 @@ def find_n_min(o):
     checked for every n up to n + VERIFY_SPAN. Returns (n_min, log)."""
     log = []
     for n in range(1, 8 * o.k + 4):
-        problem = o.verify(n) if n >= 1 else "n < 1"
+        problem = o.verify(n)
         sep = o.separated(n)
         log.append((n, problem, sep))
         if problem is None and sep:
@@ -399,7 +401,7 @@ def find_n_min(o):
 
 def coarse_gram_check(o):
     """The coarse Gram P^T G P equals 2 * the unit Gram of the coarse level
-    (the decoder's analysis uses this), for n_min..n_min+3."""
+    (the encoder's analysis, spec 4.8, relies on it), for n_min..n_min+3."""
     for n in range(o.n_min, o.n_min + 4):
         p, g = exact_level(n, o.k)
         lhs = matmul(matmul(transpose(p), g), p)
@@ -475,7 +477,6 @@ HEADER_NOTE = """\
 
 
 def emit_header(orders):
-    k_max_q_boundary = max(len(o.q_left) for o in orders)
     out = [HEADER_NOTE, """\
 //
 // Filter tables of the endpoint-interpolating B-spline wavelets, orders 1..4.
@@ -538,10 +539,9 @@ const OrderFilters& orderFilters(int order);
 
 // Over all orders: the largest max_row_tap_sum (spec 4.6).
 constexpr int64_t kMaxRowTapSum = %d;
-constexpr int kMaxBoundaryColumns = %d;
 
 }  // namespace mrsv::wavelet
-""" % (TAP_FRAC_BITS, max(o.max_int for o in orders), k_max_q_boundary)]
+""" % (TAP_FRAC_BITS, max(o.max_int for o in orders))]
     return "\n".join(out)
 
 
@@ -683,7 +683,87 @@ the taps of left column *j* in reverse order, its last tap at row *F* − 1 − 
     return "\n".join(out) + "\n"
 
 
-def build():
+# --- independent fixed-point synthesis (spec 4.5), for the golden test vectors ---
+
+GOLDEN_SIZES = (51, 29, 27)
+GOLDEN_LEVELS = (2, 1, 1)
+MASK64 = (1 << 64) - 1
+
+
+def golden_input(k, count):
+    """splitmix64 numbers as in reference/tests/wavelet_fixed_test.cpp."""
+    s = (0x9E3779B97F4A7C15 * k) & MASK64
+    out = []
+    for _ in range(count):
+        s = (s + 0x9E3779B97F4A7C15) & MASK64
+        z = s
+        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK64
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK64
+        z ^= z >> 31
+        out.append(z % (1 << 30) - (1 << 29))
+    return out
+
+
+def synthesize_fixed(o, sizes, levels, data):
+    """spec 4.5 on a 3-D array (x fastest), written from the clause, not the C++."""
+    d = o.d
+
+    def n0(a):
+        return -(-(sizes[a] - d) // (1 << levels[a]))
+
+    def size(a, j):
+        j = min(j, levels[a])
+        return sizes[a] if levels[a] == 0 else (n0(a) << (levels[a] - j)) + d
+
+    padded = [size(a, 0) for a in range(3)]
+    stride = [1, padded[0], padded[0] * padded[1]]
+    half = 1 << (TAP_FRAC_BITS - 1)
+    for level in range(max(levels), 0, -1):
+        box = [size(a, level - 1) for a in range(3)]
+        for a in range(3):
+            if levels[a] < level:
+                continue
+            n = n0(a) << (levels[a] - level)
+            cols = ([(f, [to_fixed(v) for v in t]) for f, t in o.p_columns(n)] +
+                    [(f, [to_fixed(v) for v in t]) for f, t in o.q_columns(n)])
+            others = [b for b in range(3) if b != a]
+            for u in range(box[others[0]]):
+                for v in range(box[others[1]]):
+                    base = u * stride[others[0]] + v * stride[others[1]]
+                    line = [max(-VALUE_LIMIT, min(VALUE_LIMIT, data[base + i * stride[a]]))
+                            for i in range(box[a])]
+                    acc = [0] * box[a]
+                    for j, (first, taps) in enumerate(cols):
+                        for r, t in enumerate(taps):
+                            acc[first + r] += t * line[j]
+                    for i in range(box[a]):
+                        data[base + i * stride[a]] = max(-VALUE_LIMIT, min(
+                            VALUE_LIMIT, (acc[i] + half) >> TAP_FRAC_BITS))
+    return data
+
+
+def fnv1a(values):
+    h = 1469598103934665603
+    for x in values:
+        x &= MASK64
+        for b in range(8):
+            h ^= (x >> (8 * b)) & 0xFF
+            h = (h * 1099511628211) & MASK64
+    return h
+
+
+def golden(orders):
+    for o in orders:
+        d = o.d
+        count = 1
+        for a in range(3):
+            n0 = -(-(GOLDEN_SIZES[a] - d) // (1 << GOLDEN_LEVELS[a]))
+            count *= (n0 << GOLDEN_LEVELS[a]) + d
+        data = synthesize_fixed(o, GOLDEN_SIZES, GOLDEN_LEVELS, golden_input(o.k, count))
+        print("order %d: 0x%016x" % (o.k, fnv1a(data)))
+
+
+def build(want_golden=False):
     orders = []
     for k in ORDERS:
         o = Order(k)
@@ -701,14 +781,18 @@ def build():
             k, o.n_min, o.max_int, o.max_int / 2 ** TAP_FRAC_BITS, o.max_q, o.max_qn),
             file=sys.stderr)
         orders.append(o)
+    if want_golden:
+        golden(orders)
     return {OUT_H: emit_header(orders), OUT_CPP: emit_cpp(orders), OUT_MD: emit_md(orders)}
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--check", action="store_true", help="fail if the outputs differ")
+    ap.add_argument("--golden", action="store_true",
+                    help="print the golden synthesis hashes of wavelet_fixed_test.cpp")
     args = ap.parse_args()
-    files = build()
+    files = build(args.golden)
     stale = []
     for path, text in files.items():
         old = None

@@ -37,6 +37,10 @@ constexpr ChunkType kChunkEnd{{'M', 'E', 'N', 'D'}};
 constexpr ChunkType kChunkMeta{{'m', 'e', 't', 'a'}};
 constexpr ChunkType kChunkGridHeader{{'G', 'H', 'D', 'R'}};
 constexpr ChunkType kChunkGridStored{{'G', 'R', 'A', 'W'}};
+constexpr ChunkType kChunkWaveletHeader{{'W', 'H', 'D', 'R'}};
+constexpr ChunkType kChunkNodataMask{{'G', 'M', 'S', 'K'}};
+constexpr ChunkType kChunkBand{{'G', 'B', 'N', 'D'}};
+constexpr ChunkType kChunkResidual{{'G', 'R', 'E', 'S'}};
 
 // True for the critical types this decoder implements.
 bool isKnownCriticalChunk(const ChunkType& type);
@@ -82,6 +86,8 @@ class ContainerWriter {
  public:
   ContainerWriter();
   void addChunk(const ChunkType& type, const std::vector<uint8_t>& payload);
+  // The file so far: a stream prefix (no MEND yet).
+  const std::vector<uint8_t>& image() const { return bytes_; }
   // Returns the finished file; the writer is left empty.
   std::vector<uint8_t> finish();
 

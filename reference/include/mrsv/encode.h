@@ -17,4 +17,52 @@ namespace mrsv {
 Error encodeStoredGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
                        const Metadata& metadata, std::vector<uint8_t>* out);
 
+// A region of interest in sample coordinates (local oracle, paper 2.2): a box
+// (centre +- half_size) or an ellipsoid (centre, semi-axes half_size).
+struct RegionOfInterest {
+  bool ellipsoid = false;
+  double center[3] = {0, 0, 0};
+  double half_size[3] = {1, 1, 1};
+  double falloff = 16;  // deviation of the Gaussian weight outside, in samples
+};
+
+// spec: 5.9 (informative) encoder options of wavelet-coded grids. The rate or
+// quality is set by exactly one of: step, bits_per_sample, psnr, max_error
+// (max_error 0 is lossless), keep_fraction.
+struct WaveletEncodeOptions {
+  int order = 4;              // 1 Haar, 2 linear, 3 quadratic, 4 cubic B-spline wavelets
+  int max_levels = 16;        // per axis; fewer when the axis is short (padding <= 1/32)
+  double step = 0;            // base quantiser step in sample units
+  double bits_per_sample = 0; // rate target (the stream stays at or below it)
+  double psnr = 0;            // quality target in dB, peak = max - min of the valid samples
+  double max_error = -1;      // >= 0: every valid sample within this of the input
+  double keep_fraction = 0;   // (0, 1]: global oracle, keep the most important coefficients
+  bool has_roi = false;       // local oracle: full detail where basis functions reach the region
+  RegionOfInterest roi;
+  double roi_gain = 8;        // the step inside the region is this many times finer
+};
+
+struct WaveletEncodeReport {
+  uint64_t bytes = 0;
+  double bits_per_sample = 0;
+  double psnr = 0;            // measured by decoding the stream (infinity when exact)
+  double max_abs_error = 0;   // measured by decoding the stream
+  double base_step = 0;       // in normalised units
+  uint32_t residual_step = 0; // 0 without a residual layer
+  int iterations = 0;         // encodes tried by the rate control
+  // The L2 error of the quantised wavelet expansion in function space (finest
+  // B-splines, unit knot spacing), exactly through the Gram matrices, and the
+  // orthogonal estimate sqrt(sum (e_i ||psi_i||)^2) an orthogonal basis would give.
+  double l2_error = 0;
+  double l2_error_orthogonal_estimate = 0;
+  uint64_t kept_coefficients = 0;  // nonzero quantised coefficients
+};
+
+// Encodes a grid with wavelet coding (GHDR coding 1, WHDR, GMSK, GBND..., GRES).
+// `samples` as for encodeStoredGrid. The report (may be null) gives what the
+// stream achieves, measured with the reference decoder.
+Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
+                        const Metadata& metadata, const WaveletEncodeOptions& options,
+                        std::vector<uint8_t>* out, WaveletEncodeReport* report);
+
 }  // namespace mrsv

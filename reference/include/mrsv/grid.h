@@ -30,6 +30,7 @@ bool parseSampleType(const std::string& name, SampleType* out);
 // spec: 3.1 coding.
 enum class GridCoding : uint8_t {
   kStored = 0,
+  kWavelet = 1,
 };
 
 constexpr uint8_t kGridFlagHasNodata = 0x01;
@@ -55,9 +56,41 @@ Error parseGridHeader(const ChunkView& chunk, GridHeader* out);
 std::string gridHeaderProblem(const GridHeader& header);
 std::vector<uint8_t> serializeGridHeader(const GridHeader& header);
 
+// spec: 5.2 wavelet_header(), the WHDR payload of a wavelet-coded grid.
+constexpr size_t kWaveletHeaderSize = 24;
+constexpr uint8_t kWaveletFlagHasMask = 0x01;
+constexpr uint8_t kWaveletFlagHasResidual = 0x02;
+constexpr uint8_t kEntropyAdaptive = 1;
+struct WaveletHeader {
+  uint8_t order = 4;
+  uint8_t levels[3] = {0, 0, 0};
+  uint8_t entropy_mode = kEntropyAdaptive;
+  uint8_t frac_bits = 0;
+  uint8_t wavelet_flags = 0;
+  uint64_t value_offset = 0;  // int64 (integer samples) or float64 bits (float samples)
+  uint64_t value_scale = 0;   // float64 bits; 0 for integer samples
+  bool hasMask() const { return (wavelet_flags & kWaveletFlagHasMask) != 0; }
+  bool hasResidual() const { return (wavelet_flags & kWaveletFlagHasResidual) != 0; }
+};
+
+// spec: 5.3 band_header(), the first 12 bytes of a GBND payload.
+constexpr size_t kBandHeaderSize = 12;
+constexpr uint8_t kBandFlagPredicted = 0x01;
+// spec: 5.5 residual_header(), the first 4 bytes of a GRES payload.
+constexpr size_t kResidualHeaderSize = 4;
+constexpr uint32_t kMaxResidualStep = 1u << 20;
+// spec: 5.2 bound of |value_offset| for integer samples.
+constexpr int64_t kMaxValueOffset = int64_t{1} << 40;
+
+Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, WaveletHeader* out);
+std::vector<uint8_t> serializeWaveletHeader(const WaveletHeader& header);
+
 struct DecodeOptions {
   ContainerOptions container;
   uint64_t max_output_bytes = kDefaultMaxOutputBytes;
+  // Reduced resolution (spec 5.8.3): stop the synthesis this many levels above
+  // the finest; 0 decodes at full resolution.
+  int reduce_levels = 0;
 };
 
 // What a file, or a prefix of one, decodes to.
@@ -65,7 +98,12 @@ struct DecodedGrid {
   Container container;
   GridHeader header;
   Metadata metadata;
-  bool has_samples = false;        // the sample data is complete in the bytes given
+  WaveletHeader wavelet;           // when header.coding is kWavelet
+  uint32_t bands_total = 0;        // bands of the wavelet plan
+  uint32_t bands_decoded = 0;      // complete GBND chunks among the bytes given
+  bool residual_decoded = false;
+  bool has_samples = false;        // samples were produced (stored: GRAW read; wavelet: >= 1 band)
+  uint32_t output_size[3] = {0, 0, 0};  // sizes of `samples` (smaller with reduce_levels)
   std::vector<uint8_t> samples;    // sample bytes, little-endian, x fastest, then y, then z
 };
 

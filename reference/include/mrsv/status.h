@@ -38,6 +38,9 @@ enum class Status : int {
   kBadGridHeader = 201,
   kUnsupportedCoding = 202,
   kSampleDataMismatch = 203,
+  kBadWaveletHeader = 204,
+  kBadBandHeader = 205,
+  kBadEntropyPayload = 206,
 
   // Resources and environment (spec: Annex A.3); not caused by a stream rule
   kResourceLimit = 901,

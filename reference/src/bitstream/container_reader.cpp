@@ -76,7 +76,9 @@ std::string printable(const ChunkType& type) {
 }  // namespace
 
 bool isKnownCriticalChunk(const ChunkType& type) {
-  return type == kChunkEnd || type == kChunkGridHeader || type == kChunkGridStored;
+  return type == kChunkEnd || type == kChunkGridHeader || type == kChunkGridStored ||
+         type == kChunkWaveletHeader || type == kChunkNodataMask || type == kChunkBand ||
+         type == kChunkResidual;
 }
 
 Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,

@@ -24,6 +24,9 @@ const char* statusName(Status status) {
     case Status::kBadGridHeader: return "bad_grid_header";
     case Status::kUnsupportedCoding: return "unsupported_coding";
     case Status::kSampleDataMismatch: return "sample_data_mismatch";
+    case Status::kBadWaveletHeader: return "bad_wavelet_header";
+    case Status::kBadBandHeader: return "bad_band_header";
+    case Status::kBadEntropyPayload: return "bad_entropy_payload";
     case Status::kResourceLimit: return "resource_limit";
     case Status::kIoError: return "io_error";
     case Status::kInvalidArgument: return "invalid_argument";

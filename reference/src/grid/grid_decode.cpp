@@ -3,6 +3,7 @@
 #include <string>
 
 #include "mrsv/grid.h"
+#include "grid/wavelet_decode.h"
 
 namespace mrsv {
 
@@ -18,7 +19,7 @@ Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
   const GridHeader& h = out->header;
   const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);
 
-  bool seen_stored = false;
+  // Metadata, whatever the coding (spec 2.6).
   for (size_t i = 1; i < c.chunks.size(); ++i) {
     const ChunkView& chunk = c.chunks[i];
     if (chunk.chunk_type == kChunkMeta) {
@@ -26,15 +27,22 @@ Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
                                   &out->metadata);
           !e.ok())
         return e;
-    } else if (chunk.chunk_type == kChunkGridStored) {
+    }
+  }
+  if (h.coding == GridCoding::kWavelet) return decodeWaveletGrid(options, out);
+
+  bool seen_stored = false;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkGridStored) {
       // spec: 3.3 GRAW: exactly the grid's samples, once.
       if (seen_stored)
         return Error{Status::kChunkOrder, chunk.offset, "GRAW", "more than one GRAW chunk"};
       seen_stored = true;
       if (chunk.chunk_length != expected_bytes)
         return Error{Status::kSampleDataMismatch, chunk.offset + 4, "GRAW.chunk_length",
-                     "GRAW holds " + std::to_string(chunk.chunk_length) + " bytes but the grid needs " +
-                         std::to_string(expected_bytes)};
+                     "GRAW holds " + std::to_string(chunk.chunk_length) +
+                         " bytes but the grid needs " + std::to_string(expected_bytes)};
       if (expected_bytes > options.max_output_bytes)
         return Error{Status::kResourceLimit, chunk.offset, "GRAW",
                      "grid of " + std::to_string(expected_bytes) +
@@ -47,6 +55,12 @@ Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
                      "cannot allocate " + std::to_string(expected_bytes) + " bytes"};
       }
       out->has_samples = true;
+      out->output_size[0] = h.size_x;
+      out->output_size[1] = h.size_y;
+      out->output_size[2] = h.size_z;
+    } else if (chunk.chunk_type.critical()) {
+      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                   chunk.chunk_type.str() + " in a stored grid"};
     }
     // Unknown ancillary chunks are skipped (spec 2.4).
   }

@@ -89,7 +89,8 @@ Error parseGridHeader(const ChunkView& chunk, GridHeader* out) {
     return fail(Status::kBadGridHeader, 1, "sample_type",
                 "sample_type " + std::to_string(sample_type) + " is not 1 to 6");
   h.sample_type = static_cast<SampleType>(sample_type);
-  if (coding != static_cast<uint8_t>(GridCoding::kStored))
+  if (coding != static_cast<uint8_t>(GridCoding::kStored) &&
+      coding != static_cast<uint8_t>(GridCoding::kWavelet))
     return fail(Status::kUnsupportedCoding, 2, "coding",
                 "coding " + std::to_string(coding) + " is not defined in this version");
   h.coding = static_cast<GridCoding>(coding);

@@ -83,6 +83,18 @@ bool makeGridPlan(int num_dims, const uint32_t samples[3], int order, const int 
   return true;
 }
 
+bool isValidGridPlan(const GridPlan& plan) {
+  if (plan.num_dims < 1 || plan.num_dims > 3) return false;
+  for (const AxisPlan& a : plan.axis) {
+    if (a.order < kMinOrder || a.order > kMaxOrder || a.samples == 0) return false;
+    if (a.levels < 0 || a.levels > kMaxLevels) return false;
+    if (a.levels == 0) continue;
+    if (a.coarse_intervals < static_cast<uint32_t>(minCoarseIntervals(a.order))) return false;
+    if ((uint64_t{a.coarse_intervals} << a.levels) + (a.order - 1) > UINT32_MAX) return false;
+  }
+  return true;
+}
+
 // spec: 4.4
 std::vector<Band> bandsOf(const GridPlan& plan) {
   const int top = plan.maxLevels();

@@ -57,6 +57,12 @@ struct GridPlan {
 bool makeGridPlan(int num_dims, const uint32_t samples[3], int order, const int levels[3],
                   GridPlan* out);
 
+// Added: true when every axis is structurally sound: order 1..4, 0 <= levels <=
+// kMaxLevels and, when levels > 0, coarse_intervals >= n_min(order) with size(0) below
+// 2^32. Plans from makeAxisPlan always are; the transforms do nothing on other plans
+// (they could not index the array safely).
+bool isValidGridPlan(const GridPlan& plan);
+
 // A subband in the Mallat layout of the padded array (x fastest, then y, then z).
 // spec: 4.4
 struct Band {

@@ -63,6 +63,5 @@ const OrderFilters& orderFilters(int order);
 
 // Over all orders: the largest max_row_tap_sum (spec 4.6).
 constexpr int64_t kMaxRowTapSum = 44656268;
-constexpr int kMaxBoundaryColumns = 3;
 
 }  // namespace mrsv::wavelet

@@ -1,0 +1,42 @@
+// Grid file formats read and written by the tools (never by the decoder):
+// headerless raw, NRRD (attached header, raw encoding), binary PGM (P5) and
+// SRTM .hgt. The format is chosen by the file name's extension.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mrsv/grid.h"
+#include "mrsv/metadata.h"
+
+namespace mrsv {
+
+enum class GridFormat { kRaw, kNrrd, kPgm, kHgt };
+
+GridFormat gridFormatOf(const std::string& path);
+
+// The layout of a headerless raw file, from --dims, --type and --endian.
+struct RawLayout {
+  bool has_layout = false;
+  GridHeader header;
+  bool big_endian = false;
+};
+
+struct GridInput {
+  GridHeader header;             // sizes, sample type; .hgt also sets nodata -32768
+  std::vector<uint8_t> samples;  // little-endian, x fastest
+  Metadata metadata;             // what the format says: NRRD spacings, .hgt units and CRS
+};
+
+// Reads a grid file; on failure returns false with one line in `error`
+// naming the file and the problem.
+bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in, std::string* error);
+
+// The bytes of a grid file for `path`'s format: `size` gives the sizes of
+// `samples` (smaller than the header's at reduced resolution).
+bool encodeGridOutput(const std::string& path, const GridHeader& header, const uint32_t size[3],
+                      const std::vector<uint8_t>& samples, bool big_endian,
+                      std::vector<uint8_t>* out, std::string* error);
+
+}  // namespace mrsv

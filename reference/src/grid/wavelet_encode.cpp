@@ -1,0 +1,668 @@
+// Encoder of wavelet-coded grids (spec 5, informative 5.9): normalisation,
+// void filling, analysis, quantisation, entropy coding, rate control and the
+// residual layer that makes pointwise error bounds and lossless coding exact.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "bitstream/range_coder_adapter.h"
+#include "common/byte_writer.h"
+#include "grid/coefficient_coding.h"
+#include "grid/oracle.h"
+#include "mrsv/encode.h"
+#include "wavelet/axis_plan.h"
+#include "wavelet/synthesis_fixed.h"
+#include "wavelet/transform_float.h"
+
+namespace mrsv {
+namespace {
+
+using wavelet::Band;
+using wavelet::GridPlan;
+
+bool isFloatType(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
+
+double readSample(const uint8_t* p, SampleType type) {
+  switch (type) {
+    case SampleType::kUint8: return p[0];
+    case SampleType::kInt16: { int16_t v; std::memcpy(&v, p, 2); return v; }
+    case SampleType::kUint16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case SampleType::kInt32: { int32_t v; std::memcpy(&v, p, 4); return v; }
+    case SampleType::kFloat32: { float v; std::memcpy(&v, p, 4); return v; }
+    case SampleType::kFloat64: { double v; std::memcpy(&v, p, 8); return v; }
+  }
+  return 0;
+}
+
+int bitLength(uint64_t v) {
+  int n = 0;
+  while (v) {
+    ++n;
+    v >>= 1;
+  }
+  return n;
+}
+
+Error invalid(std::string field, std::string message) {
+  return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
+}
+
+// Fills the voids of `x` (valid[i] == 0) by pull-push: averages of valid
+// samples over dyadic blocks, pushed back down into the voids. Smooth fills
+// cost few wavelet bits, and the mask restores the voids exactly anyway.
+void fillVoids(std::vector<double>* x, const std::vector<uint8_t>& valid, const uint32_t size[3]) {
+  struct Level {
+    uint32_t size[3];
+    std::vector<double> sum;
+    std::vector<double> weight;
+  };
+  std::vector<Level> pyramid(1);
+  Level& base = pyramid[0];
+  std::copy(size, size + 3, base.size);
+  base.sum.resize(x->size());
+  base.weight.resize(x->size());
+  for (size_t i = 0; i < x->size(); ++i) {
+    base.weight[i] = valid[i] ? 1.0 : 0.0;
+    base.sum[i] = valid[i] ? (*x)[i] : 0.0;
+  }
+  while (pyramid.back().size[0] > 1 || pyramid.back().size[1] > 1 || pyramid.back().size[2] > 1) {
+    const Level& fine = pyramid.back();
+    Level coarse;
+    for (int a = 0; a < 3; ++a) coarse.size[a] = (fine.size[a] + 1) / 2;
+    size_t n = size_t{coarse.size[0]} * coarse.size[1] * coarse.size[2];
+    coarse.sum.assign(n, 0.0);
+    coarse.weight.assign(n, 0.0);
+    for (uint32_t z = 0; z < fine.size[2]; ++z)
+      for (uint32_t y = 0; y < fine.size[1]; ++y)
+        for (uint32_t xx = 0; xx < fine.size[0]; ++xx) {
+          size_t f = xx + fine.size[0] * (y + size_t{fine.size[1]} * z);
+          size_t c = xx / 2 + coarse.size[0] * (y / 2 + size_t{coarse.size[1]} * (z / 2));
+          coarse.sum[c] += fine.sum[f];
+          coarse.weight[c] += fine.weight[f];
+        }
+    pyramid.push_back(std::move(coarse));
+  }
+  // Push: a cell without valid samples takes its parent's average.
+  for (size_t l = pyramid.size() - 1; l-- > 0;) {
+    Level& fine = pyramid[l];
+    const Level& coarse = pyramid[l + 1];
+    for (uint32_t z = 0; z < fine.size[2]; ++z)
+      for (uint32_t y = 0; y < fine.size[1]; ++y)
+        for (uint32_t xx = 0; xx < fine.size[0]; ++xx) {
+          size_t f = xx + fine.size[0] * (y + size_t{fine.size[1]} * z);
+          size_t c = xx / 2 + coarse.size[0] * (y / 2 + size_t{coarse.size[1]} * (z / 2));
+          if (fine.weight[f] == 0 && coarse.weight[c] > 0) {
+            fine.sum[f] = coarse.sum[c] / coarse.weight[c];
+            fine.weight[f] = 1;
+          } else if (fine.weight[f] > 0) {
+            fine.sum[f] /= fine.weight[f];
+            fine.weight[f] = 1;
+          }
+        }
+  }
+  const Level& filled = pyramid[0];  // `base` dangles once the pyramid has grown
+  for (size_t i = 0; i < x->size(); ++i)
+    if (!valid[i]) (*x)[i] = filled.weight[i] > 0 ? filled.sum[i] : 0.0;
+}
+
+// Sample-domain L2 gain of one coefficient of a 1-D axis: the Euclidean norm of
+// the finest-level coefficients synthesised from a unit impulse. Index 0..L-1:
+// wavelets of level 1..L; index L: scaling functions of the coarsest level.
+std::vector<double> axisGains(const wavelet::AxisPlan& axis) {
+  std::vector<double> gains(static_cast<size_t>(axis.levels) + 1, 1.0);
+  if (axis.levels == 0) return gains;
+  GridPlan line;
+  line.num_dims = 1;
+  line.axis[0] = axis;
+  std::vector<Band> bands = wavelet::bandsOf(line);
+  std::vector<double> buffer(axis.size(0));
+  for (const Band& band : bands) {
+    std::fill(buffer.begin(), buffer.end(), 0.0);
+    buffer[band.offset[0] + band.size[0] / 2] = 1.0;  // an interior function
+    wavelet::synthesize(line, buffer.data());
+    double energy = 0;
+    for (double v : buffer) energy += v * v;
+    gains[band.mask == 0 ? static_cast<size_t>(axis.levels) : static_cast<size_t>(band.level - 1)] =
+        std::sqrt(energy);
+  }
+  return gains;
+}
+
+class GridEncoder {
+ public:
+  Error prepare(const GridHeader& header, const std::vector<uint8_t>& samples,
+                const WaveletEncodeOptions& options);
+  // The stream for base step `delta` (x units); with `residual_step` > 0 a
+  // residual layer with that step follows the bands.
+  Error encode(double delta, uint32_t residual_step, const Metadata& metadata,
+               std::vector<uint8_t>* out);
+  // Decodes `stream` with the normative decoder and measures it against the input.
+  Error measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error) const;
+  uint64_t validCount() const { return valid_count_; }
+  double range() const { return c_max_ - c_min_; }
+  bool integerSamples() const { return !isFloatType(header_.sample_type); }
+  double unitsPerSample() const { return 1.0 / scale_; }
+  double keepThreshold() const { return keep_threshold_; }
+  // The exact L2 error of the bands (spec 5.9) and its orthogonal estimate.
+  void l2Errors(double delta, WaveletEncodeReport* report) const;
+
+ private:
+  void prepareOracles(const WaveletEncodeOptions& options);
+  uint64_t quantizeBand(uint16_t index, double delta, std::vector<int64_t>* q) const;
+  std::vector<uint8_t> bandChunk(uint16_t index, double delta);
+  std::vector<uint8_t> residualChunk(const DecodedGrid& approx, uint32_t residual_step) const;
+
+  GridHeader header_;
+  WaveletHeader wavelet_;
+  GridPlan plan_;
+  std::vector<Band> bands_;
+  std::vector<double> coefficients_;  // after analysis, x units
+  std::vector<double> band_gain_;
+  std::vector<uint8_t> valid_;
+  std::vector<double> values_;        // input samples as doubles
+  uint64_t valid_count_ = 0;
+  double c_min_ = 0, c_max_ = 0;
+  double scale_ = 1;                  // sample units per x unit
+  std::vector<uint8_t> mask_chunk_;
+  // Oracles.
+  double keep_threshold_ = 0;   // importance below which a detail coefficient is dropped
+  bool has_roi_ = false;
+  double roi_gain_ = 1;
+  std::vector<float> weight_;   // region weight of every coefficient (Mallat layout)
+};
+
+Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>& samples,
+                           const WaveletEncodeOptions& options) {
+  header_ = header;
+  header_.coding = GridCoding::kWavelet;
+  if (std::string problem = gridHeaderProblem(header_); !problem.empty())
+    return invalid("grid_header", problem);
+  const size_t n = header_.sampleCount();
+  const size_t bytes = sampleSize(header_.sample_type);
+  if (samples.size() != n * bytes)
+    return invalid("samples", "got " + std::to_string(samples.size()) + " bytes, grid needs " +
+                                  std::to_string(n * bytes));
+  if (options.order < wavelet::kMinOrder || options.order > wavelet::kMaxOrder)
+    return invalid("order", "order must be 1 to 4");
+
+  values_.resize(n);
+  valid_.assign(n, 1);
+  bool first = true;
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t* p = samples.data() + i * bytes;
+    if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes) == 0) {
+      valid_[i] = 0;
+      continue;
+    }
+    double v = readSample(p, header_.sample_type);
+    if (!std::isfinite(v))
+      return invalid("samples", "sample " + std::to_string(i) +
+                                    " is NaN or infinite; mark such samples with --nodata");
+    values_[i] = v;
+    c_min_ = first ? v : std::min(c_min_, v);
+    c_max_ = first ? v : std::max(c_max_, v);
+    first = false;
+    ++valid_count_;
+  }
+  // spec: 5.2 and decision D6: x = (sample - c_min) / scale, so x spans [0, R / scale].
+  wavelet_.order = static_cast<uint8_t>(options.order);
+  double r = c_max_ - c_min_;
+  if (integerSamples()) {
+    scale_ = 1;
+    int64_t offset = static_cast<int64_t>(c_min_);
+    wavelet_.value_offset = static_cast<uint64_t>(offset);
+    wavelet_.value_scale = 0;
+    // Values stay below 2^30 in fixed point: headroom of 2^5 to kValueLimit
+    // for the overshoot of B-spline coefficients and quantisation.
+    int frac = 30 - bitLength(static_cast<uint64_t>(r));
+    wavelet_.frac_bits = static_cast<uint8_t>(std::clamp(frac, 0, 24));
+  } else {
+    scale_ = r > 0 ? std::ldexp(r, -24) : 1.0;
+    std::memcpy(&wavelet_.value_offset, &c_min_, 8);
+    std::memcpy(&wavelet_.value_scale, &scale_, 8);
+    wavelet_.frac_bits = 6;
+  }
+  const uint32_t size[3] = {header_.size_x, header_.size_y, header_.size_z};
+  int levels[3] = {0, 0, 0};
+  for (int a = 0; a < header_.num_dims; ++a) {
+    levels[a] = wavelet::chooseLevels(size[a], options.order, options.max_levels);
+    wavelet_.levels[a] = static_cast<uint8_t>(levels[a]);
+  }
+  if (!wavelet::makeGridPlan(header_.num_dims, size, options.order, levels, &plan_))
+    return invalid("grid", "no wavelet plan for this grid");
+  bands_ = wavelet::bandsOf(plan_);
+  if (bands_.size() > 65535) return invalid("grid", "more than 65535 bands");
+
+  // Normalised values, voids filled, then padded by repeating the last sample
+  // of every axis (constants cost no detail coefficients).
+  std::vector<double> x(n);
+  for (size_t i = 0; i < n; ++i) x[i] = valid_[i] ? (values_[i] - c_min_) / scale_ : 0.0;
+  if (valid_count_ < n) fillVoids(&x, valid_, size);
+  const uint32_t px = plan_.axis[0].size(0), py = plan_.axis[1].size(0), pz = plan_.axis[2].size(0);
+  coefficients_.assign(plan_.paddedCount(), 0.0);
+  for (uint32_t z = 0; z < pz; ++z)
+    for (uint32_t y = 0; y < py; ++y)
+      for (uint32_t xx = 0; xx < px; ++xx) {
+        uint32_t sx = std::min(xx, size[0] - 1), sy = std::min(y, size[1] - 1),
+                 sz = std::min(z, size[2] - 1);
+        coefficients_[xx + px * (y + size_t{py} * z)] = x[sx + size[0] * (sy + size_t{size[1]} * sz)];
+      }
+  wavelet::analyze(plan_, coefficients_.data());
+
+  std::vector<double> gains[3];
+  for (int a = 0; a < 3; ++a) gains[a] = axisGains(plan_.axis[a]);
+  for (const Band& b : bands_) {
+    double g = 1;
+    for (int a = 0; a < 3; ++a) {
+      const wavelet::AxisPlan& ax = plan_.axis[a];
+      if (ax.levels == 0) continue;
+      if (b.mask & (1 << a)) g *= gains[a][static_cast<size_t>(b.level - 1)];
+      else if (b.mask == 0 || b.level >= ax.levels) g *= gains[a][static_cast<size_t>(ax.levels)];
+      else {
+        // The scaling part of axis a at level b.level, split further below:
+        // its gain is that of the scaling functions of that level.
+        g *= gains[a][static_cast<size_t>(ax.levels)] /
+             std::pow(std::sqrt(2.0), ax.levels - b.level);
+      }
+    }
+    band_gain_.push_back(g);
+  }
+
+  prepareOracles(options);
+
+  if (valid_count_ < n) {
+    wavelet_.wavelet_flags |= kWaveletFlagHasMask;
+    ArrayBox box;
+    box.num_dims = header_.num_dims;
+    std::copy(size, size + 3, box.size);
+    std::vector<int64_t> mask(n), symbols(n);
+    for (size_t i = 0; i < n; ++i) mask[i] = valid_[i] ? 0 : 1;
+    RangeEncoder rc(&mask_chunk_);
+    EncodingCoder coder{&rc};
+    codeArray(coder, mask.data(), symbols.data(), box, ArrayPrediction::kNone, nullptr);
+    rc.finish();
+  }
+  return {};
+}
+
+// Region weights of every coefficient (local oracle) and the importance
+// threshold of the global oracle (keep a fraction of the coefficients).
+void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
+  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  if (options.has_roi) {
+    has_roi_ = true;
+    roi_gain_ = std::max(1.0, options.roi_gain);
+    weight_.assign(coefficients_.size(), 1.0f);
+    std::vector<AxisSupports> supports;
+    for (int a = 0; a < 3; ++a) supports.emplace_back(plan_.axis[a]);
+    for (const Band& b : bands_) {
+      for (uint32_t z = 0; z < b.size[2]; ++z)
+        for (uint32_t y = 0; y < b.size[1]; ++y)
+          for (uint32_t x = 0; x < b.size[0]; ++x) {
+            const uint32_t pos[3] = {x, y, z};
+            uint32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+            for (int a = 0; a < plan_.num_dims; ++a) {
+              const wavelet::AxisPlan& ax = plan_.axis[a];
+              if ((b.mask >> a) & 1) supports[static_cast<size_t>(a)].wavelet(b.level, pos[a], &lo[a], &hi[a]);
+              else supports[static_cast<size_t>(a)].scaling(
+                       b.mask == 0 ? ax.levels : std::min(b.level, ax.levels), pos[a], &lo[a], &hi[a]);
+            }
+            weight_[(b.offset[0] + x) + (b.offset[1] + y) * px + (b.offset[2] + z) * pxy] =
+                static_cast<float>(regionWeight(options.roi, plan_.num_dims, lo, hi));
+          }
+    }
+  }
+  if (options.keep_fraction > 0) {
+    // Importance: the coefficient's contribution to the sample-domain L2 norm
+    // (|c| times its band's gain), weighted by the region when there is one.
+    std::vector<double> importance;
+    uint64_t coarsest = 0;
+    for (size_t bi = 0; bi < bands_.size(); ++bi) {
+      const Band& b = bands_[bi];
+      if (b.mask == 0) {
+        coarsest = uint64_t{b.size[0]} * b.size[1] * b.size[2];
+        continue;
+      }
+      for (uint32_t z = 0; z < b.size[2]; ++z)
+        for (uint32_t y = 0; y < b.size[1]; ++y)
+          for (uint32_t x = 0; x < b.size[0]; ++x) {
+            size_t at = (b.offset[0] + x) + (b.offset[1] + y) * px + (b.offset[2] + z) * pxy;
+            importance.push_back(std::fabs(coefficients_[at]) * band_gain_[bi] *
+                                 (has_roi_ ? weight_[at] : 1.0));
+          }
+    }
+    double wanted = std::ceil(options.keep_fraction * static_cast<double>(coefficients_.size()));
+    uint64_t keep = wanted > static_cast<double>(coarsest) ? static_cast<uint64_t>(wanted) - coarsest : 0;
+    if (keep == 0 || importance.empty()) {
+      keep_threshold_ = std::numeric_limits<double>::max();
+    } else if (keep >= importance.size()) {
+      keep_threshold_ = std::numeric_limits<double>::min();
+    } else {
+      std::nth_element(importance.begin(), importance.begin() + static_cast<long>(keep - 1),
+                       importance.end(), std::greater<double>());
+      keep_threshold_ = std::max(importance[keep - 1], std::numeric_limits<double>::min());
+    }
+  }
+}
+
+// Quantises band `index` for base step `delta` (x units, sample-domain
+// normalised by the band gain): returns the fixed-point step (0 for a band that
+// quantises to zeros) and the integers in band order. The oracles act here:
+// a coefficient below the keep threshold, or outside the region of interest
+// and weighted below the dead zone, is dropped (paper 2.2).
+uint64_t GridEncoder::quantizeBand(uint16_t index, double delta, std::vector<int64_t>* q) const {
+  const Band& band = bands_[index];
+  const double units = std::ldexp(1.0, wavelet_.frac_bits);
+  // Inside a region of interest the step is roi_gain times finer.
+  const double fine_delta = has_roi_ ? delta / roi_gain_ : delta;
+  double step_x = fine_delta / band_gain_[index];
+  // Step in fixed point; the quantiser uses exactly what the decoder will.
+  uint64_t step = static_cast<uint64_t>(std::clamp(std::llround(step_x * units), 1LL,
+                                                   static_cast<long long>(wavelet::kValueLimit)));
+  const double inv = units / static_cast<double>(step);
+  const bool coarsest = band.mask == 0;
+  // A dead zone for detail coefficients: small ones cost more bits than the
+  // error they remove (informative 5.9).
+  const double rounding = coarsest ? 0.5 : 0.4;
+  const double gain = band_gain_[index];
+  const int64_t q_limit = wavelet::kValueLimit / static_cast<int64_t>(step);
+  q->assign(uint64_t{band.size[0]} * band.size[1] * band.size[2], 0);
+  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  bool any = false;
+  size_t k = 0;
+  for (uint32_t z = 0; z < band.size[2]; ++z)
+    for (uint32_t y = 0; y < band.size[1]; ++y) {
+      const size_t at = band.offset[0] + (band.offset[1] + y) * px + (band.offset[2] + z) * pxy;
+      const double* row = coefficients_.data() + at;
+      for (uint32_t x = 0; x < band.size[0]; ++x, ++k) {
+        if (!coarsest && (keep_threshold_ > 0 || has_roi_)) {
+          double w = has_roi_ ? weight_[at + x] : 1.0;
+          double importance = std::fabs(row[x]) * gain * w;
+          bool touches_roi = has_roi_ && w >= 1.0;  // support-aware: never dropped
+          if (!touches_roi && importance < (keep_threshold_ > 0 ? keep_threshold_ : 0.6 * delta))
+            continue;
+        }
+        double c = row[x] * inv;
+        int64_t v = static_cast<int64_t>(std::floor(std::fabs(c) + rounding));
+        v = std::min(v, q_limit);
+        (*q)[k] = c < 0 ? -v : v;
+        any |= v != 0;
+      }
+    }
+  return any ? step : 0;
+}
+
+std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
+  const Band& band = bands_[index];
+  const bool coarsest = band.mask == 0;
+  std::vector<int64_t> q;
+  uint64_t step = quantizeBand(index, delta, &q);
+  std::vector<uint8_t> payload;
+  ByteWriter w(&payload);
+  w.u16(index);
+  w.u8(coarsest ? kBandFlagPredicted : 0);
+  w.u8(0);
+  w.u64(step);
+  if (step) {
+    ArrayBox box;
+    box.num_dims = plan_.num_dims;
+    for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
+    std::vector<int64_t> symbols(q.size());
+    RangeEncoder rc(&payload);
+    EncodingCoder coder{&rc};
+    codeArray(coder, q.data(), symbols.data(), box,
+              coarsest ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone, nullptr);
+    rc.finish();
+  }
+  return payload;
+}
+
+void GridEncoder::l2Errors(double delta, WaveletEncodeReport* report) const {
+  // e = c - dequantised c, in sample units (x units times scale).
+  std::vector<double> e(coefficients_.size(), 0.0);
+  const double units = std::ldexp(1.0, wavelet_.frac_bits);
+  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  std::vector<double> norms[3];
+  for (int a = 0; a < 3; ++a) norms[a] = wavelet::axisBasisNorms(plan_.axis[a]);
+  double estimate = 0;
+  uint64_t kept = 0;
+  std::vector<int64_t> q;
+  for (size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    uint64_t step = quantizeBand(static_cast<uint16_t>(b), delta, &q);
+    size_t k = 0;
+    for (uint32_t z = 0; z < band.size[2]; ++z)
+      for (uint32_t y = 0; y < band.size[1]; ++y)
+        for (uint32_t x = 0; x < band.size[0]; ++x, ++k) {
+          const uint32_t pos[3] = {band.offset[0] + x, band.offset[1] + y, band.offset[2] + z};
+          const size_t at = pos[0] + pos[1] * px + pos[2] * pxy;
+          double d = (coefficients_[at] - static_cast<double>(q[k]) * static_cast<double>(step) / units) * scale_;
+          e[at] = d;
+          kept += q[k] != 0;
+          double n = norms[0][pos[0]] * norms[1][pos[1]] * norms[2][pos[2]];
+          estimate += d * d * n * n;
+        }
+  }
+  report->l2_error = std::sqrt(functionSpaceNormSquared(plan_, bands_, e));
+  report->l2_error_orthogonal_estimate = std::sqrt(estimate);
+  report->kept_coefficients = kept;
+}
+
+Error GridEncoder::encode(double delta, uint32_t residual_step, const Metadata& metadata,
+                          std::vector<uint8_t>* out) {
+  WaveletHeader wh = wavelet_;
+  if (residual_step) wh.wavelet_flags |= kWaveletFlagHasResidual;
+  ContainerWriter writer;
+  writer.addChunk(kChunkGridHeader, serializeGridHeader(header_));
+  if (!metadata.entries.empty()) writer.addChunk(kChunkMeta, serializeMetadata(metadata));
+  writer.addChunk(kChunkWaveletHeader, serializeWaveletHeader(wh));
+  if (wh.hasMask()) writer.addChunk(kChunkNodataMask, mask_chunk_);
+  for (size_t b = 0; b < bands_.size(); ++b)
+    writer.addChunk(kChunkBand, bandChunk(static_cast<uint16_t>(b), delta));
+  if (residual_step) {
+    // The residual is taken against what the normative decoder makes of the
+    // bands (the stream so far, a prefix), so the bound holds exactly.
+    const std::vector<uint8_t>& prefix = writer.image();
+    DecodedGrid approx;
+    if (Error e = decodeGrid(prefix.data(), prefix.size(), DecodeOptions{}, &approx); !e.ok())
+      return e;
+    writer.addChunk(kChunkResidual, residualChunk(approx, residual_step));
+  }
+  *out = writer.finish();
+  return {};
+}
+
+std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
+                                                uint32_t residual_step) const {
+  const size_t n = header_.sampleCount(), bytes = sampleSize(header_.sample_type);
+  ArrayBox box;
+  box.num_dims = header_.num_dims;
+  box.size[0] = header_.size_x;
+  box.size[1] = header_.size_y;
+  box.size[2] = header_.size_z;
+  std::vector<int64_t> r(n, 0), symbols(n);
+  std::vector<uint8_t> skip(n);
+  const int64_t s = residual_step;
+  for (size_t i = 0; i < n; ++i) {
+    skip[i] = valid_[i] ? 0 : 1;
+    if (!valid_[i]) continue;
+    int64_t decoded =
+        static_cast<int64_t>(readSample(approx.samples.data() + i * bytes, header_.sample_type));
+    int64_t e = static_cast<int64_t>(values_[i]) - decoded;
+    // The nearest multiple of the odd step s: |e - r*s| <= (s-1)/2.
+    r[i] = e >= 0 ? (e + s / 2) / s : -((-e + s / 2) / s);
+  }
+  std::vector<uint8_t> payload;
+  ByteWriter w(&payload);
+  w.u32(residual_step);
+  RangeEncoder rc(&payload);
+  EncodingCoder coder{&rc};
+  codeArray(coder, r.data(), symbols.data(), box, ArrayPrediction::kNone, skip.data());
+  rc.finish();
+  return payload;
+}
+
+Error GridEncoder::measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error) const {
+  DecodedGrid g;
+  if (Error e = decodeGrid(stream.data(), stream.size(), DecodeOptions{}, &g); !e.ok()) return e;
+  const size_t bytes = sampleSize(header_.sample_type);
+  double sse = 0, worst = 0;
+  for (size_t i = 0; i < values_.size(); ++i) {
+    const uint8_t* p = g.samples.data() + i * bytes;
+    if (!valid_[i]) {
+      if (std::memcmp(p, &header_.nodata_bits, bytes) != 0)
+        return Error{Status::kInvalidArgument, 0, "verify", "a void did not come back as no-data"};
+      continue;
+    }
+    double d = std::fabs(readSample(p, header_.sample_type) - values_[i]);
+    sse += d * d;
+    worst = std::max(worst, d);
+  }
+  double mse = valid_count_ ? sse / static_cast<double>(valid_count_) : 0;
+  double r = c_max_ - c_min_;
+  *psnr = mse > 0 ? 10 * std::log10(r * r / mse) : std::numeric_limits<double>::infinity();
+  *max_error = worst;
+  return {};
+}
+
+// Rewrites `stream` with `metadata` as its meta chunk, right after GHDR.
+Error replaceMetadata(const Metadata& metadata, std::vector<uint8_t>* stream) {
+  Container c;
+  if (Error e = readContainer(stream->data(), stream->size(), ContainerOptions{}, &c); !e.ok())
+    return e;
+  ContainerWriter writer;
+  for (size_t i = 0; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkMeta) continue;
+    writer.addChunk(chunk.chunk_type,
+                    std::vector<uint8_t>(chunk.payload, chunk.payload + chunk.chunk_length));
+    if (i == 0 && !metadata.entries.empty()) writer.addChunk(kChunkMeta, serializeMetadata(metadata));
+  }
+  *stream = writer.finish();
+  return {};
+}
+
+}  // namespace
+
+Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
+                        const Metadata& metadata, const WaveletEncodeOptions& options,
+                        std::vector<uint8_t>* out, WaveletEncodeReport* report) {
+  GridEncoder enc;
+  if (Error e = enc.prepare(header, samples, options); !e.ok()) return e;
+  WaveletEncodeReport rep;
+  const double n = static_cast<double>(header.sampleCount());
+  auto finish = [&](std::vector<uint8_t>&& stream, double delta, uint32_t residual_step) -> Error {
+    if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error); !e.ok()) return e;
+    // Record the figures in the meta chunk (spec 2.6 error_* keys): the chunk
+    // is replaced, the coded chunks stay as they are.
+    Metadata recorded = metadata;
+    auto text = [](double v) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", v);
+      return std::string(buf);
+    };
+    if (options.max_error >= 0) recorded.set("error_bound", text(std::floor(options.max_error)));
+    recorded.set("error_max_abs", text(rep.max_abs_error));
+    recorded.set("error_psnr_db", std::isinf(rep.psnr) ? "inf" : text(rep.psnr));
+    recorded.set("error_rmse", text(enc.range() / std::pow(10.0, rep.psnr / 20)));
+    if (Error e = replaceMetadata(recorded, &stream); !e.ok()) return e;
+    rep.bytes = stream.size();
+    rep.bits_per_sample = 8.0 * static_cast<double>(stream.size()) / n;
+    enc.l2Errors(delta, &rep);
+    rep.base_step = delta;
+    rep.residual_step = residual_step;
+    *out = std::move(stream);
+    if (report) *report = rep;
+    return {};
+  };
+
+  if (options.max_error >= 0) {
+    if (!enc.integerSamples())
+      return invalid("max_error", "error bounds and lossless coding need integer samples in this version");
+    uint32_t d = static_cast<uint32_t>(std::floor(options.max_error));
+    if (d > (kMaxResidualStep - 1) / 2) return invalid("max_error", "bound above 524287");
+    uint32_t residual_step = 2 * d + 1;
+    // The wavelet step that minimises the total size: a few candidates around the residual step.
+    std::vector<uint8_t> best, stream;
+    double best_delta = 0;
+    for (int k = -1; k <= 7; ++k) {
+      double delta = std::ldexp(static_cast<double>(residual_step), k);
+      if (Error e = enc.encode(delta, residual_step, metadata, &stream); !e.ok()) return e;
+      ++rep.iterations;
+      if (best.empty() || stream.size() < best.size()) {
+        best.swap(stream);
+        best_delta = delta;
+      }
+    }
+    if (Error e = finish(std::move(best), best_delta, residual_step); !e.ok()) return e;
+    if (rep.max_abs_error > d)
+      return Error{Status::kInvalidArgument, 0, "verify",
+                   "internal error: decoded error " + std::to_string(rep.max_abs_error) +
+                       " above the bound " + std::to_string(d)};
+    return {};
+  }
+
+  // Lossy: find the base step by bisection on its logarithm.
+  const double r = std::max(enc.range(), 1e-300) * enc.unitsPerSample();
+  double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
+  std::vector<uint8_t> stream, best;
+  double best_delta = 0;
+  if (options.keep_fraction > 0) {
+    // Global oracle: the base step is the importance threshold, so that every
+    // kept coefficient quantises to at least 1 and every dropped one to 0.
+    double delta = std::min(enc.keepThreshold(), 1e300);
+    if (Error e = enc.encode(delta, 0, metadata, &stream); !e.ok()) return e;
+    rep.iterations = 1;
+    return finish(std::move(stream), delta, 0);
+  }
+  if (options.step > 0) {
+    double delta = options.step * enc.unitsPerSample();
+    if (Error e = enc.encode(delta, 0, metadata, &stream); !e.ok()) return e;
+    rep.iterations = 1;
+    return finish(std::move(stream), delta, 0);
+  }
+  const bool by_rate = options.bits_per_sample > 0;
+  if (!by_rate && !(options.psnr > 0))
+    return invalid("options", "give a step, a rate, a PSNR, an error bound or lossless");
+  // The recorded error figures are added after the rate control: their largest
+  // possible size is reserved from the budget.
+  Metadata probe = metadata;
+  for (const char* key : {"error_max_abs", "error_psnr_db", "error_rmse"}) probe.set(key, "-1.23457e+300");
+  const double reserve = static_cast<double>(serializeMetadata(probe).size() -
+                                             serializeMetadata(metadata).size()) +
+                         (metadata.entries.empty() ? kChunkHeaderSize + kChunkCrcSize : 0);
+  const double target_bytes = options.bits_per_sample * n / 8.0 - reserve;
+  for (int it = 0; it < 40 && hi - lo > 1e-3; ++it) {
+    double mid = 0.5 * (lo + hi), delta = std::exp2(mid);
+    if (Error e = enc.encode(delta, 0, metadata, &stream); !e.ok()) return e;
+    ++rep.iterations;
+    bool meets;
+    if (by_rate) {
+      meets = static_cast<double>(stream.size()) <= target_bytes;
+    } else {
+      double psnr, worst;
+      if (Error e = enc.measure(stream, &psnr, &worst); !e.ok()) return e;
+      meets = psnr >= options.psnr;
+    }
+    // A larger step gives a smaller stream and a lower PSNR: for a rate keep the
+    // smallest step that fits, for a PSNR the largest step that reaches it.
+    if (meets) {
+      best.swap(stream);
+      best_delta = delta;
+      (by_rate ? hi : lo) = mid;
+      if (by_rate && static_cast<double>(best.size()) >= 0.98 * target_bytes) break;
+    } else {
+      (by_rate ? lo : hi) = mid;
+    }
+  }
+  if (best.empty()) {
+    return invalid(by_rate ? "bits_per_sample" : "psnr",
+                   by_rate ? "the rate is too low for even the coarsest approximation"
+                           : "the PSNR target cannot be met");
+  }
+  return finish(std::move(best), best_delta, 0);
+}
+
+}  // namespace mrsv

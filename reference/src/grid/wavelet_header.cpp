@@ -1,0 +1,98 @@
+// spec: 5.2 wavelet_header() (WHDR).
+#include <cmath>
+#include <cstring>
+
+#include "common/byte_reader.h"
+#include "common/byte_writer.h"
+#include "mrsv/grid.h"
+#include "wavelet/axis_plan.h"
+
+namespace mrsv {
+namespace {
+
+bool isFloatType(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
+
+}  // namespace
+
+Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, WaveletHeader* out) {
+  auto fail = [&](Status s, uint64_t at, const char* field, std::string msg) {
+    return Error{s, chunk.payloadOffset() + at, std::string("WHDR.") + field, std::move(msg)};
+  };
+  if (chunk.chunk_length != kWaveletHeaderSize)
+    return Error{Status::kBadChunkLength, chunk.offset + 4, "WHDR.chunk_length",
+                 "WHDR payload must be " + std::to_string(kWaveletHeaderSize) + " bytes, not " +
+                     std::to_string(chunk.chunk_length)};
+  ByteReader r(chunk.payload, chunk.chunk_length);
+  WaveletHeader h;
+  h.order = r.u8();
+  for (uint8_t& l : h.levels) l = r.u8();
+  h.entropy_mode = r.u8();
+  h.frac_bits = r.u8();
+  h.wavelet_flags = r.u8();
+  uint8_t reserved = r.u8();
+  h.value_offset = r.u64();
+  h.value_scale = r.u64();
+
+  if (h.order < wavelet::kMinOrder || h.order > wavelet::kMaxOrder)
+    return fail(Status::kBadWaveletHeader, 0, "order", "order must be 1 to 4");
+  for (int a = 0; a < 3; ++a) {
+    if (a >= grid.num_dims && h.levels[a] != 0)
+      return fail(Status::kBadWaveletHeader, 1 + a, "levels", "levels must be 0 beyond num_dims");
+    if (h.levels[a] > wavelet::kMaxLevels)
+      return fail(Status::kBadWaveletHeader, 1 + a, "levels",
+                  "levels above " + std::to_string(wavelet::kMaxLevels));
+  }
+  if (h.entropy_mode != kEntropyAdaptive)
+    return fail(Status::kUnsupportedCoding, 4, "entropy_mode",
+                "entropy_mode " + std::to_string(h.entropy_mode) + " is not defined in this version");
+  if (h.frac_bits > 24) return fail(Status::kBadWaveletHeader, 5, "frac_bits", "frac_bits above 24");
+  if (h.wavelet_flags & ~(kWaveletFlagHasMask | kWaveletFlagHasResidual))
+    return fail(Status::kReservedNonZero, 6, "wavelet_flags", "reserved bits must be 0");
+  if (reserved != 0) return fail(Status::kReservedNonZero, 7, "reserved", "must be 0");
+  if (h.hasMask() && !grid.hasNodata())
+    return fail(Status::kBadWaveletHeader, 6, "wavelet_flags", "has_mask without a no-data value in GHDR");
+  if (isFloatType(grid.sample_type)) {
+    double offset, scale;
+    std::memcpy(&offset, &h.value_offset, 8);
+    std::memcpy(&scale, &h.value_scale, 8);
+    if (!std::isfinite(offset))
+      return fail(Status::kBadWaveletHeader, 8, "value_offset", "must be finite");
+    if (!std::isfinite(scale) || !(scale > 0))
+      return fail(Status::kBadWaveletHeader, 16, "value_scale", "must be finite and positive");
+    if (h.hasResidual())
+      return fail(Status::kBadWaveletHeader, 6, "wavelet_flags",
+                  "has_residual is only defined for integer samples");
+  } else {
+    int64_t offset = static_cast<int64_t>(h.value_offset);
+    if (offset > kMaxValueOffset || offset < -kMaxValueOffset)
+      return fail(Status::kBadWaveletHeader, 8, "value_offset", "|value_offset| above 2^40");
+    if (h.value_scale != 0)
+      return fail(Status::kBadWaveletHeader, 16, "value_scale", "must be 0 for integer samples");
+  }
+  const uint32_t samples[3] = {grid.size_x, grid.size_y, grid.size_z};
+  const int levels[3] = {h.levels[0], h.levels[1], h.levels[2]};
+  wavelet::GridPlan plan;
+  if (!wavelet::makeGridPlan(grid.num_dims, samples, h.order, levels, &plan))
+    return fail(Status::kBadWaveletHeader, 1, "levels",
+                "no decomposition of this grid with these levels (spec 4.3)");
+  if (plan.paddedCount() > kMaxGridSamples)
+    return fail(Status::kBadWaveletHeader, 1, "levels", "padded grid above 2^32 samples");
+  *out = h;
+  return {};
+}
+
+std::vector<uint8_t> serializeWaveletHeader(const WaveletHeader& h) {
+  std::vector<uint8_t> out;
+  ByteWriter w(&out);
+  w.u8(h.order);
+  for (uint8_t l : h.levels) w.u8(l);
+  w.u8(h.entropy_mode);
+  w.u8(h.frac_bits);
+  w.u8(h.wavelet_flags);
+  w.u8(0);
+  w.u64(h.value_offset);
+  w.u64(h.value_scale);
+  return out;
+}
+
+}  // namespace mrsv

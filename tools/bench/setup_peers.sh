@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs the peer codecs and the Python packages that tools/bench/rd_bench.py needs
+# (Debian 12 packages). As root it runs apt-get for whatever is missing; otherwise it
+# prints the apt-get line to run and exits 1. Exit 0 when everything is present.
+#
+#   tools/bench/setup_peers.sh
+set -euo pipefail
+
+# package -> a file that shows it is installed
+declare -A probe=(
+  [zfp]=/usr/bin/zfp
+  [libopenjp2-tools]=/usr/bin/opj_compress
+  [libjxl-tools]=/usr/bin/cjxl
+  [xz-utils]=/usr/bin/xz
+  [zstd]=/usr/bin/zstd
+  [python3-numpy]=/usr/lib/python3/dist-packages/numpy/__init__.py
+  [python3-matplotlib]=/usr/lib/python3/dist-packages/matplotlib/__init__.py
+)
+order=(zfp libopenjp2-tools libjxl-tools xz-utils zstd python3-numpy python3-matplotlib)
+
+missing=()
+for p in "${order[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+     [ ! -e "${probe[$p]}" ]; then
+    missing+=("$p")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "setup_peers: all peer packages present (${order[*]})"
+  exit 0
+fi
+
+line="apt-get install -y --no-install-recommends ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then
+  echo "setup_peers: missing: ${missing[*]}" >&2
+  echo "setup_peers: run as root:  apt-get update && $line" >&2
+  exit 1
+fi
+
+echo "setup_peers: installing: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -q
+$line
+echo "setup_peers: done"
