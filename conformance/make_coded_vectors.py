@@ -126,7 +126,7 @@ def build(g):
     # Every order, lossless (expected output by construction) and lossy.
     for order in (1, 2, 3, 4):
         g.valid(f"terrain_order{order}_lossless",
-                g.encode(helens, "int16", h2, ["--order", str(order), "--lossless"]),
+                g.encode(helens, "int16", h2, ["--order", str(order), "--lossless", "--bound-route", "residual"]),
                 "4, 5", f"a terrain window, order {order}, lossless (bands + residual)",
                 expected=canonical("int16", h2, helens))
         g.valid(f"terrain_order{order}_step",
@@ -137,10 +137,13 @@ def build(g):
                 "4, 5", f"a CT block (3-D uint8), order {order}, about 1.5 bits per sample")
     # Error bound and voids.
     g.valid("terrain_nodata_max_error4",
-            g.encode(fuji, "int16", [53, 47], ["--max-error", "4"], nodata=-32768),
+            g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "residual"], nodata=-32768),
             "5.5, 5.8.2", "SRTM window with voids: no-data mask, residual with step 9")
+    g.valid("terrain_nodata_predictive_max_error4",
+            g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "predictive"], nodata=-32768),
+            "5.7.4, 5.8.2", "SRTM window with voids: levels 0, samples quantised with step 9, predicted")
     g.valid("terrain_nodata_lossless",
-            g.encode(fuji, "int16", [53, 47], ["--lossless"], nodata=-32768),
+            g.encode(fuji, "int16", [53, 47], ["--lossless", "--bound-route", "predictive"], nodata=-32768),
             "5.5, 5.8.2", "SRTM window with voids, lossless",
             expected=canonical("int16", [53, 47], fuji, nodata_bits=0x8000))
     g.valid("volume_uint16_lossless", g.encode(headsq, "uint16", [16, 16, 8], ["--lossless"]),
@@ -162,7 +165,7 @@ def build(g):
     g.valid("volume_float64_rate", g.encode(doubles, "float64", h3, ["--bits-per-sample", "3"]), "5.8.2",
             "a CT block as float64 in [-0.5, 0.5], 3 bits per sample")
     # Prefixes: after the first band, after half the bands, before GRES, before MEND.
-    full = g.encode(helens, "int16", h2, ["--max-error", "1"])
+    full = g.encode(helens, "int16", h2, ["--max-error", "1", "--bound-route", "residual"])
     chunks = parse_chunks(full)
     bands = [i for i, (t, _) in enumerate(chunks) if t == "GBND"]
     for label, upto in (("first_band", bands[0]), ("half_bands", bands[len(bands) // 2]),
@@ -260,7 +263,8 @@ def build(g):
     g.invalid("residual_step_too_large", c, 204, "bad_wavelet_header", offset_of(c, r) + 8, "5.5",
               "residual_step 2^20 + 1")
 
-    masked = parse_chunks(g.encode(fuji, "int16", [53, 47], ["--max-error", "4"], nodata=-32768))
+    masked = parse_chunks(g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "residual"],
+                                   nodata=-32768))
     m, mb = find(masked, "GMSK"), find(masked, "GBND")
     c = masked[:m] + masked[m + 1:mb + 1] + [masked[m]] + masked[mb + 1:]
     g.invalid("mask_after_band", c, 116, "chunk_order", offset_of(c, m), "5.1",

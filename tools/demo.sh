@@ -11,57 +11,116 @@ out=$root/demo/out
 rm -rf "$out"
 mkdir -p "$out"
 
-# name | file | dims | type | extra encode options
+# PSNR (peak = max - min of the valid input) and max error of decoded vs input.
+psnr() {  # psnr INPUT DECODED TYPE [NODATA]
+  python3 - "$@" <<'PY'
+import array, math, sys
+src, dec, t = sys.argv[1:4]
+nodata = int(sys.argv[4]) if len(sys.argv) > 4 else None
+code = {"int16": "h", "uint8": "B", "uint16": "H"}[t]
+a, b = array.array(code), array.array(code)
+a.frombytes(open(src, "rb").read()); b.frombytes(open(dec, "rb").read())
+pairs = [(x, y) for x, y in zip(a, b) if x != nodata]
+lo, hi = min(x for x, _ in pairs), max(x for x, _ in pairs)
+se = sum((x - y) ** 2 for x, y in pairs); worst = max(abs(x - y) for x, y in pairs)
+voids = all(y == nodata for x, y in zip(a, b) if x == nodata) if nodata is not None else True
+p = "inf" if se == 0 else "%.2f" % (10 * math.log10((hi - lo) ** 2 * len(pairs) / se))
+print("PSNR %s dB, max error %d%s" % (p, worst, ", voids exact" if nodata is not None and voids else ""))
+PY
+}
+
+# name | file | dims | type | options
 inputs=(
-  "mt_st_helens|mt_st_helens_128x128_int16le.raw|128,128|int16|--meta value_units=m --meta spatial_units=m --meta spacing=30,30 --meta crs=EPSG:26910"
+  "mt_st_helens|mt_st_helens_128x128_int16le.raw|128,128|int16|--meta value_units=m --meta spacing=30,30 --meta crs=EPSG:26910"
   "mt_fuji_summit|mt_fuji_summit_128x128_int16le.raw|128,128|int16|--nodata -32768 --meta value_units=m --meta crs=EPSG:4326"
   "ct_head|ct_head_64x64x32_uint8.raw|64,64,32|uint8|--meta spacing=1,1,2"
   "ct_headsq|ct_headsq_16x16x8_uint16le.raw|16,16,8|uint16|--meta spacing=3.2,3.2,1.5"
 )
 
 echo
-echo "== 1. encode (stored coding: lossless) =="
-for entry in "${inputs[@]}"; do
-  IFS='|' read -r name file dims type extra <<<"$entry"
-  # shellcheck disable=SC2086  # extra holds several options
-  "$mrsv" encode --quiet --dims "$dims" --type "$type" $extra \
-    --meta "provenance=demo/data/$file (see demo/data/SOURCES.md)" "$data/$file" "$out/$name.mrsv"
-  echo "  $file -> demo/out/$name.mrsv"
-done
-
-echo
-echo "== 2. check every file =="
-"$mrsv" check "$out"/*.mrsv | sed "s|$out/|  demo/out/|"
-
-echo
-echo "== 3. info: the chunk table of one file =="
-"$mrsv" info "$out/mt_st_helens.mrsv" | sed "s|$out/|demo/out/|; s/^/  /"
-
-echo
-echo "== 4. decode and compare with the input =="
+echo "== 1. lossless wavelet coding (cubic B-spline wavelets + exact residual) =="
 report=()
 for entry in "${inputs[@]}"; do
   IFS='|' read -r name file dims type extra <<<"$entry"
+  # shellcheck disable=SC2086  # extra holds several options
+  "$mrsv" encode --quiet --lossless --dims "$dims" --type "$type" $extra \
+    --meta "provenance=demo/data/$file (see demo/data/SOURCES.md)" "$data/$file" "$out/$name.mrsv"
   "$mrsv" decode --quiet "$out/$name.mrsv" "$out/$name.raw"
   if cmp -s "$data/$file" "$out/$name.raw"; then same=exact; else same=DIFFERENT; fi
+  [ "$same" = exact ] || { echo "  $name: lossless round trip differs" >&2; exit 1; }
   in_bytes=$(stat -c %s "$data/$file")
   mrsv_bytes=$(stat -c %s "$out/$name.mrsv")
-  report+=("$(printf '%-16s %-9s %-7s %10s %10s %8s  %s' "$name" "${dims//,/x}" "$type" "$in_bytes" "$mrsv_bytes" "+$((mrsv_bytes - in_bytes))" "$same")")
-  echo "  $name: $same"
-  [ "$same" = exact ] || exit 1
+  zstd_bytes=$(zstd -19 -q -c "$data/$file" | wc -c)
+  xz_bytes=$(xz -9 -c "$data/$file" | wc -c)
+  if [ "$type" = uint8 ]; then sample_bytes=1; else sample_bytes=2; fi
+  bits=$(awk -v b="$mrsv_bytes" -v n="$in_bytes" -v s="$sample_bytes" 'BEGIN { printf "%.2f", 8 * b * s / n }')
+  report+=("$(printf '%-15s %-9s %-6s %8s %8s %6s %8s %8s  %s' "$name" "${dims//,/x}" "$type" \
+    "$in_bytes" "$mrsv_bytes" "$bits" "$zstd_bytes" "$xz_bytes" "$same")")
+  echo "  demo/data/$file -> demo/out/$name.mrsv: $same"
 done
 
 echo
-echo "== 5. progressive reading: a prefix decodes to its complete chunks =="
-cut=250
-"$mrsv" decode --quiet --canonical --bytes $cut "$out/mt_st_helens.mrsv" "$out/prefix.canonical"
-echo "  first $cut bytes of mt_st_helens.mrsv (GHDR and meta complete, GRAW not):"
-echo "  canonical output: $(head -1 "$out/prefix.canonical")  (shape known, 0 samples yet)"
+echo "== 2. check every file (rules down to the coefficients; recorded error figures) =="
+"$mrsv" check "$out"/*.mrsv | sed "s|$out/|  demo/out/|"
+
+echo
+echo "== 3. lossy: a rate, a PSNR, an error bound, the keep oracle, a region of interest =="
+helens=$data/mt_st_helens_128x128_int16le.raw
+fuji=$data/mt_fuji_summit_128x128_int16le.raw
+for opts in "--bits-per-sample 1" "--psnr 55" "--keep 0.05"; do
+  "$mrsv" encode --quiet --dims 128,128 --type int16 $opts "$helens" "$out/lossy.mrsv"
+  "$mrsv" decode --quiet "$out/lossy.mrsv" "$out/lossy.raw"
+  printf '  st helens %-22s %6d bytes: %s\n' "$opts" "$(stat -c %s "$out/lossy.mrsv")" \
+    "$(psnr "$helens" "$out/lossy.raw" int16)"
+done
+"$mrsv" encode --quiet --dims 128,128 --type int16 --nodata -32768 --max-error 4 "$fuji" "$out/bound.mrsv"
+"$mrsv" decode --quiet "$out/bound.mrsv" "$out/bound.raw"
+printf '  fuji      %-22s %6d bytes: %s\n' "--max-error 4" "$(stat -c %s "$out/bound.mrsv")" \
+  "$(psnr "$fuji" "$out/bound.raw" int16 -32768)"
+"$mrsv" encode --quiet --dims 128,128 --type int16 --bits-per-sample 0.5 \
+  --roi ellipsoid:64,64,20,20 --roi-falloff 6 "$helens" "$out/roi.mrsv"
+"$mrsv" decode --quiet "$out/roi.mrsv" "$out/roi.raw"
+python3 - "$helens" "$out/roi.raw" <<'PY'
+import array, math, sys
+a, b = array.array("h"), array.array("h")
+a.frombytes(open(sys.argv[1], "rb").read()); b.frombytes(open(sys.argv[2], "rb").read())
+r = max(a) - min(a)
+def psnr(sel):
+    se = [(a[i] - b[i]) ** 2 for i in range(len(a)) if sel(i % 128, i // 128)]
+    m = sum(se) / len(se)
+    return "inf" if m == 0 else "%.1f" % (10 * math.log10(r * r / m))
+inside = lambda x, y: (x - 64) ** 2 + (y - 64) ** 2 <= 400
+print("  st helens --bits-per-sample 0.5 --roi ellipsoid:64,64,20,20: PSNR %s dB inside the region, %s dB outside"
+      % (psnr(inside), psnr(lambda x, y: not inside(x, y))))
+PY
+
+echo
+echo "== 4. info: the chunk table of a wavelet-coded file =="
+"$mrsv" info "$out/mt_st_helens.mrsv" | sed "s|$out/|demo/out/|; s/^/  /"
+
+echo
+echo "== 5. progressive: every prefix of complete chunks decodes, coarse to fine =="
+"$mrsv" encode --quiet --dims 128,128 --type int16 --bits-per-sample 2 "$helens" "$out/prog.mrsv"
+"$mrsv" info --json "$out/prog.mrsv" >"$out/prog.json"
+python3 - "$out/prog.json" <<'PY' >"$out/cuts.txt"
+import json, sys
+chunks = json.load(open(sys.argv[1]))["chunks"]
+bands = [c for c in chunks if c["type"] == "GBND"]
+for i in (0, 3, 6, len(bands) - 1):
+    c = bands[i]
+    print(i + 1, len(bands), c["offset"] + 12 + c["length"])
+PY
+while read -r n total bytes; do
+  "$mrsv" decode --quiet --bytes "$bytes" "$out/prog.mrsv" "$out/prefix.raw"
+  printf '  first %6d bytes (%2d of %d bands): %s\n' "$bytes" "$n" "$total" "$(psnr "$helens" "$out/prefix.raw" int16)"
+done <"$out/cuts.txt"
+"$mrsv" decode --quiet --levels 2 "$out/prog.mrsv" "$out/quarter.nrrd"
+echo "  --levels 2: a reduced-resolution grid: $(grep sizes "$out/quarter.nrrd")"
 
 echo
 echo "== 6. damage is reported, never decoded =="
 cp "$out/mt_fuji_summit.mrsv" "$out/damaged.mrsv"
-printf '\x00' | dd of="$out/damaged.mrsv" bs=1 seek=5000 conv=notrunc status=none
+printf '\x00' | dd of="$out/damaged.mrsv" bs=1 seek=3000 conv=notrunc status=none
 if "$mrsv" check "$out/damaged.mrsv" 2>"$out/damaged.txt"; then
   echo "  a damaged file passed the check" >&2
   exit 1
@@ -72,9 +131,9 @@ if "$mrsv" decode --quiet "$out/damaged.mrsv" "$out/damaged.raw" 2>/dev/null; th
 
 {
   echo
-  echo "== report =="
-  printf '%-16s %-9s %-7s %10s %10s %8s  %s\n' "data set" "size" "type" "raw bytes" ".mrsv" "framing" "round trip"
+  echo "== report: lossless sizes (bytes) =="
+  printf '%-15s %-9s %-6s %8s %8s %6s %8s %8s  %s\n' "data set" "size" "type" "raw" ".mrsv" "bits" "zstd-19" "xz -9" "round trip"
   printf '%s\n' "${report[@]}"
   echo
-  echo "Format $("$mrsv" --version | sed 's/.*format //'), coding: stored. Wavelet coding arrives with issue 4."
+  echo "Format $("$mrsv" --version | sed 's/.*format //'); tools/bench/ compares with zfp, OpenJPEG and JPEG XL."
 } | tee "$out/report.txt"

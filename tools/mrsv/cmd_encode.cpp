@@ -37,6 +37,10 @@ const char kHelp[] =
     "                        short axes, so that padding stays under 1/32 of the axis)\n"
     "  --lossless            every sample exact (integer samples; the default)\n"
     "  --max-error D         every sample within D of the input (integer samples)\n"
+    "  --bound-route R       how --lossless and --max-error are met: residual (wavelet bands\n"
+    "                        and a residual layer: every prefix is an approximation),\n"
+    "                        predictive (no decomposition, neighbour prediction: often\n"
+    "                        smaller, not progressive) or auto (the smaller; default)\n"
     "  --bits-per-sample R   the best quality within R bits per sample\n"
     "  --psnr P              the smallest stream with PSNR >= P dB (peak: max - min)\n"
     "  --step S              quantiser step S in sample units (no rate control)\n"
@@ -160,7 +164,7 @@ int runEncode(int argc, char** argv) {
   std::string error;
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
-                    "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain"},
+                    "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route"},
                    {"quiet", "help", "lossless"},
                    {"meta"}},
                   &error))
@@ -237,6 +241,14 @@ int runEncode(int argc, char** argv) {
       !number("roi-gain", 1, 1e6, &wavelet.roi_gain))
     return fail(cmd, error, kExitUsage);
   targets = rate_targets;
+  if (args.has("bound-route")) {
+    const std::string& r = args.value("bound-route");
+    if (r == "residual") wavelet.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+    else if (r == "predictive") wavelet.bound_route = WaveletEncodeOptions::BoundRoute::kPredictive;
+    else if (r != "auto") return fail(cmd, "--bound-route must be auto, residual or predictive", kExitUsage);
+    if (wavelet.max_error < 0)
+      return fail(cmd, "--bound-route goes with --lossless or --max-error", kExitUsage);
+  }
   if (args.has("roi")) {
     if (!parseRegion(args.value("roi"), &wavelet.roi, &error)) return fail(cmd, "--roi: " + error, kExitUsage);
     if (wavelet.max_error >= 0)

@@ -36,6 +36,11 @@ struct WaveletEncodeOptions {
   double bits_per_sample = 0; // rate target (the stream stays at or below it)
   double psnr = 0;            // quality target in dB, peak = max - min of the valid samples
   double max_error = -1;      // >= 0: every valid sample within this of the input
+  // How an error bound is met: wavelet bands plus a residual layer (every prefix
+  // is a wavelet approximation), or no decomposition and neighbour prediction
+  // (often smaller, not progressive); kAuto keeps the smaller stream.
+  enum class BoundRoute { kAuto, kResidual, kPredictive };
+  BoundRoute bound_route = BoundRoute::kAuto;
   double keep_fraction = 0;   // (0, 1]: global oracle, keep the most important coefficients
   bool has_roi = false;       // local oracle: full detail where basis functions reach the region
   RegionOfInterest roi;

@@ -28,7 +28,7 @@ enum class ArrayPrediction : uint8_t {
                   // decoded neighbours (the coarsest scaling block)
 };
 
-constexpr int kMagnitudeClasses = 7;
+constexpr int kMagnitudeClasses = 10;
 constexpr int kMagnitudeModels = 12;
 constexpr int kMaxMagnitudeBits = 40;  // coded symbols satisfy |s| < 2^40
 // spec: 5.7.4 decoded values are clamped to +-kArrayValueLimit, so that garbage
@@ -44,18 +44,22 @@ struct ArrayContexts {
   BitModel zero[kMagnitudeClasses];
   BitModel sign[3];
   BitModel magnitude[kMagnitudeClasses][kMagnitudeModels];
+  BitModel first_low_bit[kMagnitudeClasses][kMagnitudeModels];
 };
 
 // spec: 5.7.2 block edge per dimensionality: 64 samples (1-D), 8x8 (2-D), 4x4x4 (3-D).
 inline uint32_t blockEdge(int num_dims) { return num_dims == 1 ? 64 : num_dims == 2 ? 8 : 4; }
 
-// spec: 5.7.3 magnitude class from the sum of the neighbours' magnitudes.
+// spec: 5.7.3 magnitude class from the weighted sum of the neighbours'
+// magnitudes: 0 for 0, then one class per doubling (1-2, 3-4, 5-8, ...).
 inline int magnitudeClass(uint64_t s) {
-  if (s <= 2) return static_cast<int>(s);
-  if (s <= 4) return 3;
-  if (s <= 8) return 4;
-  if (s <= 32) return 5;
-  return 6;
+  int c = 0;
+  uint64_t bound = 0;
+  while (c < kMagnitudeClasses - 1 && s > bound) {
+    ++c;
+    bound = bound == 0 ? 2 : 2 * bound;
+  }
+  return c;
 }
 
 inline uint64_t magnitudeOf(int64_t v) {
@@ -99,8 +103,13 @@ bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t* sym, const ArrayBox& 
   const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
   const size_t i = x + y * sx + z * sxy;
   int64_t left = x > 0 ? sym[i - 1] : 0;
-  uint64_t around = magnitudeOf(left) + (y > 0 ? magnitudeOf(sym[i - sx]) : 0) +
-                    (z > 0 ? magnitudeOf(sym[i - sxy]) : 0);
+  uint64_t around = 2 * magnitudeOf(left);
+  if (y > 0) {
+    around += 2 * magnitudeOf(sym[i - sx]);
+    if (x > 0) around += magnitudeOf(sym[i - sx - 1]);
+    if (x + 1 < box.size[0]) around += magnitudeOf(sym[i - sx + 1]);
+  }
+  if (z > 0) around += 2 * magnitudeOf(sym[i - sxy]);
   int cls = magnitudeClass(around);
   int64_t value = Coder::kEncoding ? sym[i] : 0;
   uint64_t mag = magnitudeOf(value);
@@ -121,8 +130,15 @@ bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t* sym, const ArrayBox& 
     if (coder.bit(m, n < length) == 0) break;
     if (++n == kMaxMagnitudeBits - 1) return false;
   }
+  // The bit below the leading one is coded adaptively, the rest equiprobable.
   uint64_t low = 0;
-  for (int done = 0; done < n;) {
+  int done = 0;
+  if (n > 0) {
+    BitModel* m = &ctx.first_low_bit[cls][n < kMagnitudeModels ? n : kMagnitudeModels - 1];
+    low = static_cast<uint64_t>(coder.bit(m, static_cast<int>((mag >> (n - 1)) & 1)));
+    done = 1;
+  }
+  while (done < n) {
     int chunk = n - done > 24 ? 24 : n - done;
     uint32_t part = static_cast<uint32_t>((mag >> (n - done - chunk)) & ((1u << chunk) - 1));
     low = (low << chunk) | coder.direct(part, chunk);

@@ -549,11 +549,13 @@ Error replaceMetadata(const Metadata& metadata, std::vector<uint8_t>* stream) {
 Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
                         const Metadata& metadata, const WaveletEncodeOptions& options,
                         std::vector<uint8_t>* out, WaveletEncodeReport* report) {
-  GridEncoder enc;
-  if (Error e = enc.prepare(header, samples, options); !e.ok()) return e;
+  GridEncoder wavelet_enc, predictive_enc;
+  GridEncoder* used = &wavelet_enc;
+  if (Error e = wavelet_enc.prepare(header, samples, options); !e.ok()) return e;
   WaveletEncodeReport rep;
   const double n = static_cast<double>(header.sampleCount());
   auto finish = [&](std::vector<uint8_t>&& stream, double delta, uint32_t residual_step) -> Error {
+    GridEncoder& enc = *used;
     if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error); !e.ok()) return e;
     // Record the figures in the meta chunk (spec 2.6 error_* keys): the chunk
     // is replaced, the coded chunks stay as they are.
@@ -579,30 +581,52 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   };
 
   if (options.max_error >= 0) {
-    if (!enc.integerSamples())
+    if (!wavelet_enc.integerSamples())
       return invalid("max_error", "error bounds and lossless coding need integer samples in this version");
     uint32_t d = static_cast<uint32_t>(std::floor(options.max_error));
     if (d > (kMaxResidualStep - 1) / 2) return invalid("max_error", "bound above 524287");
     uint32_t residual_step = 2 * d + 1;
-    // The wavelet step that minimises the total size: a few candidates around the residual step.
     std::vector<uint8_t> best, stream;
     double best_delta = 0;
-    for (int k = -1; k <= 7; ++k) {
+    uint32_t best_residual = 0;
+    // Route 1: wavelet bands plus a residual layer; a few wavelet steps around
+    // the residual step, keeping the smallest stream.
+    const bool try_residual = options.bound_route != WaveletEncodeOptions::BoundRoute::kPredictive;
+    const bool try_predictive = options.bound_route != WaveletEncodeOptions::BoundRoute::kResidual;
+    for (int k = -1; try_residual && k <= 7; ++k) {
       double delta = std::ldexp(static_cast<double>(residual_step), k);
-      if (Error e = enc.encode(delta, residual_step, metadata, &stream); !e.ok()) return e;
+      if (Error e = wavelet_enc.encode(delta, residual_step, metadata, &stream); !e.ok()) return e;
       ++rep.iterations;
       if (best.empty() || stream.size() < best.size()) {
         best.swap(stream);
         best_delta = delta;
+        best_residual = residual_step;
       }
     }
-    if (Error e = finish(std::move(best), best_delta, residual_step); !e.ok()) return e;
+    // Route 2: no decomposition (levels 0): the samples themselves, quantised
+    // with step 2d+1 (which alone keeps every error within d) and coded with
+    // neighbour prediction. On noisy or piecewise-flat data this beats route 1.
+    WaveletEncodeOptions flat = options;
+    flat.max_levels = 0;
+    if (try_predictive) {
+      if (Error e = predictive_enc.prepare(header, samples, flat); !e.ok()) return e;
+      if (Error e = predictive_enc.encode(residual_step, 0, metadata, &stream); !e.ok()) return e;
+      ++rep.iterations;
+    }
+    if (try_predictive && (best.empty() || stream.size() < best.size())) {
+      best.swap(stream);
+      best_delta = residual_step;
+      best_residual = 0;
+      used = &predictive_enc;
+    }
+    if (Error e = finish(std::move(best), best_delta, best_residual); !e.ok()) return e;
     if (rep.max_abs_error > d)
       return Error{Status::kInvalidArgument, 0, "verify",
                    "internal error: decoded error " + std::to_string(rep.max_abs_error) +
                        " above the bound " + std::to_string(d)};
     return {};
   }
+  GridEncoder& enc = wavelet_enc;
 
   // Lossy: find the base step by bisection on its logarithm.
   const double r = std::max(enc.range(), 1e-300) * enc.unitsPerSample();
