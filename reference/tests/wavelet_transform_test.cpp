@@ -115,7 +115,8 @@ TEST(WaveletTransform, PerfectReconstruction) {
           analyze(plan, data.data());
           synthesize(plan, data.data());
           double err = 0.0;
-          for (size_t i = 0; i < data.size(); ++i) err = std::max(err, std::fabs(data[i] - input[i]));
+          for (size_t i = 0; i < data.size(); ++i)
+            err = std::max(err, std::fabs(data[i] - input[i]));
           EXPECT_LE(err, 1e-9 * range(input))
               << "order " << k << " dims " << shape.dims << " " << shape.n[0] << "x" << shape.n[1]
               << "x" << shape.n[2] << " levels " << plan.axis[0].levels << ","

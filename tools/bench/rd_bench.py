@@ -29,6 +29,7 @@ except ImportError:  # a pyenv/venv python3 without numpy: use Debian's, which s
 
 import argparse
 import csv
+import hashlib
 import math
 import re
 import shutil
@@ -64,12 +65,36 @@ def log(msg):
     print(f"[{time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
 
 
-def run(cmd, stdout=subprocess.PIPE, **kw):
+_children = set()
+_children_lock = threading.Lock()
+_stop = threading.Event()
+
+
+def stop_all(*_):
+    """SIGTERM/SIGINT: no new process, kill the running ones, then leave (the temp dir is removed)."""
+    _stop.set()
+    with _children_lock:
+        for p in list(_children):
+            p.kill()
+    raise SystemExit(130)
+
+
+def run(cmd, stdout=subprocess.PIPE):
     cmd = [str(c) for c in cmd]
-    p = subprocess.run(cmd, stdout=stdout, stderr=subprocess.PIPE, **kw)
+    if _stop.is_set():
+        raise ToolError("stopped")
+    p = subprocess.Popen(cmd, stdout=stdout, stderr=subprocess.PIPE)
+    with _children_lock:
+        _children.add(p)
+    try:
+        out, err = p.communicate()
+    finally:
+        with _children_lock:
+            _children.discard(p)
+    p.stdout, p.stderr = out, err
     if p.returncode != 0:
-        err = p.stderr.decode(errors="replace").strip().splitlines()[-3:]
-        raise ToolError(f"{' '.join(cmd)}: exit {p.returncode}: {' | '.join(err)}")
+        lines = err.decode(errors="replace").strip().splitlines()[-3:]
+        raise ToolError(f"{' '.join(cmd)}: exit {p.returncode}: {' | '.join(lines)}")
     return p
 
 
@@ -575,75 +600,77 @@ def report(args, datasets, results, out_dir, info):
     names = [ds.name for ds in datasets]
     codecs = [c for c in CODECS_RD if any(r["codec"] == c for r in rd)]
 
-    def cell(r, key="psnr"):
-        if r is None:
-            return "-"
-        return f"{fnum(r[key])} @{r['bps']:.3f}" + ("*" if r.get("note") else "")
+    dcsv, ll, eb, li = [], results["lossless"], results["maxerr"], {}
+    if datasets:
+        def cell(r, key="psnr"):
+            if r is None:
+                return "-"
+            return f"{fnum(r[key])} @{r['bps']:.3f}" + ("*" if r.get("note") else "")
 
-    idx = {(r["dataset"], r["target"], r["codec"]): r for r in rd}
-    rows = []
-    for n in names:
-        for R in RATES:
-            rows.append([n, f"{R:g}"] + [cell(idx.get((n, R, c))) for c in codecs])
-    txt.append(table(["dataset", "R"] + codecs, rows,
-                     "RATE-DISTORTION: PSNR dB (peak = max - min of the valid samples) @ bits/sample reached\n"
-                     "  * = see note in rd.csv (target not reachable; the pair reached is shown)"))
-    rows16 = []
-    for ds in datasets:
-        if ds.bits != 16:
-            continue
-        for R in RATES:
-            rows16.append([ds.name, f"{R:g}"] + [cell(idx.get((ds.name, R, c)), "psnr65535") for c in codecs])
-    if rows16:
-        txt.append(table(["dataset", "R"] + codecs, rows16,
-                         "RATE-DISTORTION, 16-bit data sets: PSNR dB with peak 65535 @ bits/sample"))
-    # MRSV minus peer, at MRSV's rate
-    peers = [c for c in codecs if c != "mrsv"]
-    drows, dcsv = [], []
-    for n in names:
-        for R in RATES:
-            m = idx.get((n, R, "mrsv"))
-            if not m:
+        idx = {(r["dataset"], r["target"], r["codec"]): r for r in rd}
+        rows = []
+        for n in names:
+            for R in RATES:
+                rows.append([n, f"{R:g}"] + [cell(idx.get((n, R, c))) for c in codecs])
+        txt.append(table(["dataset", "R"] + codecs, rows,
+                         "RATE-DISTORTION: PSNR dB (peak = max - min of the valid samples) @ bits/sample reached\n"
+                         "  * = see note in rd.csv (target not reachable; the pair reached is shown)"))
+        rows16 = []
+        for ds in datasets:
+            if ds.bits != 16:
                 continue
-            line = [n, f"{R:g}", f"{m['bps']:.3f}", fnum(m["psnr"])]
-            for c in peers:
-                pts = [r for r in rd if r["dataset"] == n and r["codec"] == c]
-                p = interp_peer(pts, m["bps"]) if pts else None
-                dv = None if p is None or not math.isfinite(m["psnr"]) else m["psnr"] - p
-                line.append("-" if dv is None else f"{dv:+.2f}")
-                dcsv.append(dict(dataset=n, target=R, mrsv_bps=m["bps"], mrsv_psnr=m["psnr"], peer=c,
-                                 peer_psnr_at_mrsv_bps=p, delta_db=dv))
-            drows.append(line)
-    txt.append(table(["dataset", "R", "mrsv bps", "mrsv PSNR"] + [f"vs {c}" for c in peers], drows,
-                     "MRSV minus peer, dB, at MRSV's rate (peer curve interpolated in log2(rate); '-' = more than 3 %\n"
-                     "  outside the peer's measured rates). Negative = MRSV loses."))
-    # lossless
-    ll = results["lossless"]
-    lcod = [c for c in ["mrsv", "opj-5/3", "jxl", "xz", "zstd"] if any(r["codec"] == c for r in ll)]
-    li = {(r["dataset"], r["codec"]): r for r in ll}
-    lrows = []
-    for ds in datasets:
-        m = li.get((ds.name, "mrsv"))
-        line = [ds.name]
-        for c in lcod:
-            r = li.get((ds.name, c))
-            line.append("-" if r is None else f"{r['bytes'] * 8 / ds.n:.4f}" + ("" if r["ok"] else "!"))
-        for c in lcod[1:]:
-            r = li.get((ds.name, c))
-            line.append("-" if r is None or m is None else f"{m['bytes'] / r['bytes']:.3f}")
-        lrows.append(line)
-    txt.append(table(["dataset"] + [f"{c} bps" for c in lcod] + [f"mrsv/{c}" for c in lcod[1:]], lrows,
-                     "LOSSLESS: bits/sample of the whole grid, and size ratio MRSV/peer (<1: MRSV smaller).\n"
-                     "  Every decode was compared with the original file ('!' = it differed)."))
-    # error bound
-    eb = results["maxerr"]
-    erows = []
-    for ds in datasets:
-        for r in sorted((r for r in eb if r["dataset"] == ds.name), key=lambda r: r["d"]):
-            erows.append([ds.name, r["d"], f"{r['bps']:.4f}", r["outside"], r["max_abs_error"], fnum(r["psnr"]),
-                          "-" if r["voids_exact"] is None else f"{'yes' if r['voids_exact'] else 'NO'} ({r['voids']})"])
-    txt.append(table(["dataset", "d", "bps", "outside d", "max |err|", "PSNR", "voids exact (count)"], erows,
-                     "ERROR BOUND: mrsv encode --max-error d; decoded samples with |error| > d (must be 0)"))
+            for R in RATES:
+                rows16.append([ds.name, f"{R:g}"] + [cell(idx.get((ds.name, R, c)), "psnr65535") for c in codecs])
+        if rows16:
+            txt.append(table(["dataset", "R"] + codecs, rows16,
+                             "RATE-DISTORTION, 16-bit data sets: PSNR dB with peak 65535 @ bits/sample"))
+        # MRSV minus peer, at MRSV's rate
+        peers = [c for c in codecs if c != "mrsv"]
+        drows, dcsv = [], []
+        for n in names:
+            for R in RATES:
+                m = idx.get((n, R, "mrsv"))
+                if not m:
+                    continue
+                line = [n, f"{R:g}", f"{m['bps']:.3f}", fnum(m["psnr"])]
+                for c in peers:
+                    pts = [r for r in rd if r["dataset"] == n and r["codec"] == c]
+                    p = interp_peer(pts, m["bps"]) if pts else None
+                    dv = None if p is None or not math.isfinite(m["psnr"]) else m["psnr"] - p
+                    line.append("-" if dv is None else f"{dv:+.2f}")
+                    dcsv.append(dict(dataset=n, target=R, mrsv_bps=m["bps"], mrsv_psnr=m["psnr"], peer=c,
+                                     peer_psnr_at_mrsv_bps=p, delta_db=dv))
+                drows.append(line)
+        txt.append(table(["dataset", "R", "mrsv bps", "mrsv PSNR"] + [f"vs {c}" for c in peers], drows,
+                         "MRSV minus peer, dB, at MRSV's rate (peer curve interpolated in log2(rate); '-' = more than 3 %\n"
+                         "  outside the peer's measured rates). Negative = MRSV loses."))
+        # lossless
+        ll = results["lossless"]
+        lcod = [c for c in ["mrsv", "opj-5/3", "jxl", "xz", "zstd"] if any(r["codec"] == c for r in ll)]
+        li = {(r["dataset"], r["codec"]): r for r in ll}
+        lrows = []
+        for ds in datasets:
+            m = li.get((ds.name, "mrsv"))
+            line = [ds.name]
+            for c in lcod:
+                r = li.get((ds.name, c))
+                line.append("-" if r is None else f"{r['bytes'] * 8 / ds.n:.4f}" + ("" if r["ok"] else "!"))
+            for c in lcod[1:]:
+                r = li.get((ds.name, c))
+                line.append("-" if r is None or m is None else f"{m['bytes'] / r['bytes']:.3f}")
+            lrows.append(line)
+        txt.append(table(["dataset"] + [f"{c} bps" for c in lcod] + [f"mrsv/{c}" for c in lcod[1:]], lrows,
+                         "LOSSLESS: bits/sample of the whole grid, and size ratio MRSV/peer (<1: MRSV smaller).\n"
+                         "  Every decode was compared with the original file ('!' = it differed)."))
+        # error bound
+        eb = results["maxerr"]
+        erows = []
+        for ds in datasets:
+            for r in sorted((r for r in eb if r["dataset"] == ds.name), key=lambda r: r["d"]):
+                erows.append([ds.name, r["d"], f"{r['bps']:.4f}", r["outside"], r["max_abs_error"], fnum(r["psnr"]),
+                              "-" if r["voids_exact"] is None else f"{'yes' if r['voids_exact'] else 'NO'} ({r['voids']})"])
+        txt.append(table(["dataset", "d", "bps", "outside d", "max |err|", "PSNR", "voids exact (count)"], erows,
+                         "ERROR BOUND: mrsv encode --max-error d; decoded samples with |error| > d (must be 0)"))
     # speed
     sp = results.get("speed")
     if sp:
@@ -653,7 +680,9 @@ def report(args, datasets, results, out_dir, info):
                           f"{r['cpu_s'] / r['wall_s']:.2f}", f"{r['msps']:.2f}", f"{r['msps_cpu']:.2f}"])
         txt.append(table(["what", "tool", "dataset", "samples", "bps", "best wall s", "cpu/wall", "M samples/s",
                           "M samples/cpu-s"], srows,
-                         f"DECODING SPEED: best of {args.speed_reps}, wall clock of the whole process (file in, file out)"))
+                         f"DECODING SPEED: best of {args.speed_reps}, wall clock of the whole process (file in, file out);\n"
+                         f"  machine load average (1/5/15 min) before {results.get('load_before')}, "
+                         f"after {results.get('load_after')} ({os.cpu_count()} CPUs)"))
         g = {(r["what"], r["tool"]): r for r in sp}
         ratios = []
         for a, b in [(("3-D decode", "mrsv"), ("3-D decode", "zfp")),
@@ -672,8 +701,13 @@ def report(args, datasets, results, out_dir, info):
         txt.append("NOT RUN / FAILED:\n" + "\n".join("  " + s for s in results["skipped"]))
     body = "\n\n".join(txt)
     head = "\n".join(info)
-    (out_dir / "summary.txt").write_text(head + "\n\n" + body + "\n")
+    (out_dir / ("summary.txt" if datasets else "summary_speed.txt")).write_text(head + "\n\n" + body + "\n")
     print(head + "\n\n" + body)
+    if sp:
+        write_csv(out_dir / "speed.csv", sp, ["what", "tool", "dataset", "samples", "bps", "wall_s", "cpu_s", "msps",
+                                              "msps_cpu", "cmd"])
+    if not datasets:
+        return
 
     write_csv(out_dir / "rd.csv", rd, ["dataset", "kind", "type", "samples", "voids", "target", "codec", "bps",
                                        "psnr", "psnr65535", "max_error", "mse", "param", "note"])
@@ -686,9 +720,6 @@ def report(args, datasets, results, out_dir, info):
     write_csv(out_dir / "lossless.csv", ll, ["dataset", "samples", "codec", "bytes", "bps", "mrsv_over_peer", "ok", "param"])
     write_csv(out_dir / "error_bound.csv", eb, ["dataset", "d", "bps", "outside", "max_abs_error", "psnr", "voids",
                                                 "voids_exact"])
-    if sp:
-        write_csv(out_dir / "speed.csv", sp, ["what", "tool", "dataset", "samples", "bps", "wall_s", "cpu_s", "msps",
-                                              "msps_cpu", "cmd"])
     plot(datasets, rd, codecs, out_dir / "rd_curves.png")
 
 
@@ -746,6 +777,13 @@ def plot(datasets, rd, codecs, path):
 
 # ----------------------------------------------------------------------------- main
 
+def loadavg():
+    try:
+        return " ".join(open("/proc/loadavg").read().split()[:3])
+    except OSError:
+        return "?"
+
+
 def versions(args):
     out = []
     try:
@@ -763,7 +801,8 @@ def versions(args):
     rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
     dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no"],
                            capture_output=True, text=True)
-    out.append(f"mrsv: {args.mrsv} (git {rev.stdout.strip()}{' + uncommitted changes' if dirty.stdout.strip() else ''})")
+    out.append(f"mrsv: {args.mrsv_orig} built {args.mrsv_mtime}, sha256 {args.mrsv_sha256[:16]}, copied before the run; "
+               f"git {rev.stdout.strip()}{' + uncommitted changes' if dirty.stdout.strip() else ''}")
     return out
 
 
@@ -777,6 +816,7 @@ def main():
     ap.add_argument("--datasets", help="comma-separated substrings of data set names (e.g. rainier,bonsai)")
     ap.add_argument("--quick", action="store_true", help=f"only {' and '.join(QUICK)} (the speed part still runs)")
     ap.add_argument("--no-speed", action="store_true", help="skip the decoding-speed part")
+    ap.add_argument("--speed-only", action="store_true", help="only the decoding-speed part (part 4)")
     ap.add_argument("--speed-volume", default="ct_bonsai", help="256^3 volume for the speed part (ct_bonsai)")
     ap.add_argument("--speed-terrain", default="mt_rainier", help="2-D terrain for the speed part (mt_rainier)")
     ap.add_argument("--speed-reps", type=int, default=3)
@@ -813,17 +853,26 @@ def main():
         return all(t not in missing for t in tools)
 
     t_start = time.time()
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
+    signal.signal(signal.SIGTERM, stop_all)
+    signal.signal(signal.SIGINT, stop_all)
     with tempfile.TemporaryDirectory(prefix="mrsv_rd_bench_", dir=args.tmp) as tmp:
         root = Path(tmp)
+        # One binary for the whole run, even if build/ is rebuilt meanwhile.
+        snap = root / "mrsv"
+        shutil.copy2(args.mrsv, snap)
+        args.mrsv_sha256 = hashlib.sha256(snap.read_bytes()).hexdigest()
+        args.mrsv_mtime = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(args.mrsv.stat().st_mtime))
+        args.mrsv_orig, args.mrsv = args.mrsv, snap
         log(f"temp dir {root}; data sets: {', '.join(d.name for d in sel)}")
-        for ds in sel:
+        for ds in ([] if args.speed_only else sel):
             prepare(ds, root)
 
         tasks = []  # (cost estimate, label, fn)
         for ds in sel:
             def add(cost, label, fn, ds=ds):
                 tasks.append((cost * ds.n, ds, label, fn))
+            if args.speed_only:
+                continue
             for R in RATES:
                 add(0.6, f"mrsv rd {R:g}", lambda wd, ds=ds, R=R: ("rd", task_mrsv_rd(args, ds, R, wd)))
             if have("zfp"):
@@ -872,15 +921,19 @@ def main():
 
         if not args.no_speed:
             if have("zfp", "opj_compress", "opj_decompress"):
-                log("part 4: decoding speed (alone on the machine)")
+                log("part 4: decoding speed (no other job of this bench runs meanwhile)")
                 try:
+                    results["load_before"] = loadavg()
                     speed(args, all_ds, root, results)
+                    results["load_after"] = loadavg()
                 except Exception as e:  # noqa: BLE001
                     results["skipped"].append(f"speed: {e}")
                     log(f"FAILED speed: {e}")
             else:
                 results["skipped"].append("speed: needs zfp and opj_decompress")
 
+    if args.speed_only:
+        sel = []
     order = {ds.name: i for i, ds in enumerate(sel)}
     results["rd"].sort(key=lambda r: (order[r["dataset"]], r["target"], CODECS_RD.index(r["codec"])))
     info = ["MRSV rate-distortion / lossless / error-bound / speed benchmark (tools/bench/rd_bench.py)",

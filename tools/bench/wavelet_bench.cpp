@@ -35,7 +35,8 @@ std::vector<double> field(const GridPlan& plan) {
     for (uint32_t y = 0; y < ny; ++y)
       for (uint32_t x = 0; x < nx; ++x)
         v[(size_t{z} * ny + y) * nx + x] =
-            1000.0 * std::sin(0.05 * x) * std::cos(0.031 * y) + 7.0 * z + ((x * 7 + y * 13 + z) % 17);
+            1000.0 * std::sin(0.05 * x) * std::cos(0.031 * y) + 7.0 * z +
+            ((x * 7 + y * 13 + z) % 17);
   return v;
 }
 

@@ -577,7 +577,7 @@ def emit_cpp(orders):
         if o.g_boundary:
             flat = [c_double(v) for row in o.g_boundary for v in row]
             out.append("constexpr double kGramBoundary%d[] = {\n%s\n};" % (
-                k, c_list(flat, 2 * o.d + 1)))
+                k, c_list(flat, 3)))
         out.append("")
 
     out.append("constexpr OrderFilters kOrders[] = {")

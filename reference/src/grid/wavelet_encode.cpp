@@ -36,15 +36,6 @@ double readSample(const uint8_t* p, SampleType type) {
   return 0;
 }
 
-int bitLength(uint64_t v) {
-  int n = 0;
-  while (v) {
-    ++n;
-    v >>= 1;
-  }
-  return n;
-}
-
 Error invalid(std::string field, std::string message) {
   return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
 }
@@ -214,9 +205,17 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
     int64_t offset = static_cast<int64_t>(c_min_);
     wavelet_.value_offset = static_cast<uint64_t>(offset);
     wavelet_.value_scale = 0;
-    // Values stay below 2^30 in fixed point: headroom of 2^5 to kValueLimit
-    // for the overshoot of B-spline coefficients and quantisation.
-    int frac = 30 - bitLength(static_cast<uint64_t>(r));
+    // Coefficients must stay below kValueLimit = 2^35 in fixed point. A
+    // coefficient can reach the product over the transformed axes of the
+    // worst-case gain from samples to coefficients (spec 4.10: 1, 2.52, 3.87,
+    // 7.05 for orders 1-4, rounded up here) times the range, plus one step.
+    static const double kWorstAxisGain[5] = {0, 1.0, 2.6, 4.0, 7.2};
+    double gain = 1;
+    for (int a = 0; a < header_.num_dims; ++a)
+      if (wavelet::chooseLevels(a == 0 ? header_.size_x : a == 1 ? header_.size_y : header_.size_z,
+                                options.order, options.max_levels) > 0)
+        gain *= kWorstAxisGain[options.order];
+    int frac = 34 - static_cast<int>(std::ceil(std::log2(gain * (r + 1))));
     wavelet_.frac_bits = static_cast<uint8_t>(std::clamp(frac, 0, 24));
   } else {
     scale_ = r > 0 ? std::ldexp(r, -24) : 1.0;
