@@ -135,6 +135,18 @@ def build(g):
         g.valid(f"volume_order{order}_rate",
                 g.encode(head, "uint8", h3, ["--order", str(order), "--bits-per-sample", "1.5"]),
                 "4, 5", f"a CT block (3-D uint8), order {order}, about 1.5 bits per sample")
+    # The baseline entropy mode (5.10).
+    g.valid("terrain_baseline_lossless",
+            g.encode(helens, "int16", h2, ["--entropy", "baseline", "--lossless", "--bound-route", "residual"]),
+            "5.10", "a terrain window, baseline entropy mode, lossless (bands + residual)",
+            expected=canonical("int16", h2, helens))
+    g.valid("volume_baseline_rate",
+            g.encode(head, "uint8", h3, ["--entropy", "baseline", "--bits-per-sample", "1.5"]),
+            "5.10", "a CT block, baseline entropy mode, about 1.5 bits per sample")
+    g.valid("terrain_baseline_nodata_predictive",
+            g.encode(fuji, "int16", [53, 47], ["--entropy", "baseline", "--max-error", "2",
+                                                 "--bound-route", "predictive"], nodata=-32768),
+            "5.10", "SRTM window with voids, baseline mode: mask, predicted samples with step 5")
     # Error bound and voids.
     g.valid("terrain_nodata_max_error4",
             g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "residual"], nodata=-32768),
@@ -191,7 +203,7 @@ def build(g):
     whdr("whdr_levels_beyond_dims", 3, b"\x01", 204, "bad_wavelet_header", 3, "levels on z of a 2-D grid")
     whdr("whdr_no_plan", 1, b"\x09", 204, "bad_wavelet_header", 1,
          "9 levels on a 61-sample axis: no plan with n_0 >= n_min")
-    whdr("whdr_entropy_mode_0", 4, b"\x00", 202, "unsupported_coding", 4, "entropy_mode 0 (reserved)")
+    whdr("whdr_entropy_mode_2", 4, b"\x02", 202, "unsupported_coding", 4, "entropy_mode 2 (reserved)")
     whdr("whdr_frac_bits_25", 5, b"\x19", 204, "bad_wavelet_header", 5, "frac_bits 25")
     whdr("whdr_flags_reserved", 6, b"\x82", 105, "reserved_nonzero", 6, "a reserved bit of wavelet_flags")
     whdr("whdr_mask_without_nodata", 6, b"\x03", 204, "bad_wavelet_header", 6,

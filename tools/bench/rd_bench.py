@@ -318,7 +318,7 @@ def task_zfp_acc(args, ds, wd):
     # of t with steps at powers of two: scanning t = 2^k finds every reachable rate.
     scan = {}
     z = wd / "a.zfp"
-    for k in range(16, -12, -1):
+    for k in range(24, -12, -1):  # 2^24: far above any |sample|, where the rate bottoms out
         tol = 2.0 ** k
         run(["zfp", "-q", "-f"] + zfp_dims(ds) + ["-a", repr(tol), "-i", ds.f32, "-z", z])
         scan[tol] = bps(z, ds)
@@ -667,10 +667,24 @@ def report(args, datasets, results, out_dir, info):
         erows = []
         for ds in datasets:
             for r in sorted((r for r in eb if r["dataset"] == ds.name), key=lambda r: r["d"]):
+                own = best = None
+                if math.isfinite(r["psnr"]):
+                    own = interp_peer([x for x in rd if x["dataset"] == ds.name and x["codec"] == "mrsv"], r["bps"])
+                    for c in peers:
+                        v = interp_peer([x for x in rd if x["dataset"] == ds.name and x["codec"] == c], r["bps"])
+                        if v is not None and (best is None or v > best[1]):
+                            best = (c, v)
+                r["mrsv_bps_route_psnr"] = own
+                r["best_peer"], r["best_peer_psnr"] = best if best else (None, None)
                 erows.append([ds.name, r["d"], f"{r['bps']:.4f}", r["outside"], r["max_abs_error"], fnum(r["psnr"]),
-                              "-" if r["voids_exact"] is None else f"{'yes' if r['voids_exact'] else 'NO'} ({r['voids']})"])
-        txt.append(table(["dataset", "d", "bps", "outside d", "max |err|", "PSNR", "voids exact (count)"], erows,
-                         "ERROR BOUND: mrsv encode --max-error d; decoded samples with |error| > d (must be 0)"))
+                              "-" if r["voids_exact"] is None else f"{'yes' if r['voids_exact'] else 'NO'} ({r['voids']})",
+                              "-" if own is None else f"{own:.2f}",
+                              "-" if best is None else f"{best[1]:.2f} {best[0]}"])
+        txt.append(table(["dataset", "d", "bps", "outside d", "max |err|", "PSNR", "voids exact (count)",
+                          "mrsv --bits-per-sample", "best peer"], erows,
+                         "ERROR BOUND: mrsv encode --max-error d; decoded samples with |error| > d (must be 0).\n"
+                         "  Last two columns: PSNR at the same rate of MRSV's --bits-per-sample curve and of the best peer\n"
+                         "  among those measured around that rate (interpolated as in the table above; '-' = none)."))
     # speed
     sp = results.get("speed")
     if sp:
@@ -719,11 +733,11 @@ def report(args, datasets, results, out_dir, info):
         r["mrsv_over_peer"] = m["bytes"] / r["bytes"] if m else None
     write_csv(out_dir / "lossless.csv", ll, ["dataset", "samples", "codec", "bytes", "bps", "mrsv_over_peer", "ok", "param"])
     write_csv(out_dir / "error_bound.csv", eb, ["dataset", "d", "bps", "outside", "max_abs_error", "psnr", "voids",
-                                                "voids_exact"])
-    plot(datasets, rd, codecs, out_dir / "rd_curves.png")
+                                                "voids_exact", "mrsv_bps_route_psnr", "best_peer", "best_peer_psnr"])
+    plot(datasets, rd, codecs, eb, out_dir / "rd_curves.png")
 
 
-def plot(datasets, rd, codecs, path):
+def plot(datasets, rd, codecs, eb, path):
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -737,19 +751,29 @@ def plot(datasets, rd, codecs, path):
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.9 * nrow), squeeze=False)
     style = {"mrsv": ("k", "o", "-"), "zfp-rate": ("tab:blue", "s", "--"), "zfp-acc": ("tab:cyan", "D", "--"),
              "opj-9/7": ("tab:red", "^", "-."), "jxl": ("tab:green", "v", ":"), "jxl-scaled": ("tab:olive", "P", ":")}
+    style["mrsv --max-error"] = ("dimgray", "o", (0, (1, 1)))
     for ax, ds in zip(axes.flat, datasets):
-        ys, xs, ym = [], [], []
-        for c in codecs:
-            pts = sorted({(r["bps"], r["psnr"]) for r in rd if r["dataset"] == ds.name and r["codec"] == c
-                          and math.isfinite(r["psnr"])})
+        ys, xs, ym, lossless = [], [], [], []
+        series = [(c, [r for r in rd if r["dataset"] == ds.name and r["codec"] == c]) for c in codecs]
+        series.append(("mrsv --max-error", [r for r in eb if r["dataset"] == ds.name]))
+        for c, rs in series:
+            pts = sorted({(r["bps"], r["psnr"]) for r in rs if math.isfinite(r["psnr"])})
+            col, mk, ls = style.get(c, ("gray", "x", "-"))
+            lossless += [(r["bps"], col, mk) for r in rs if math.isinf(r["psnr"])]
             if not pts:
                 continue
-            col, mk, ls = style.get(c, ("gray", "x", "-"))
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], color=col, marker=mk, ls=ls, lw=1.4, ms=5, label=c)
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], color=col, marker=mk, ls=ls, lw=1.4, ms=5, label=c,
+                    mfc="none" if c == "mrsv --max-error" else col)
             ys += [p[1] for p in pts]
             xs += [p[0] for p in pts]
             if c == "mrsv":
                 ym += [p[1] for p in pts]
+        if lossless:
+            tr = ax.get_xaxis_transform()
+            for x, col, mk in sorted(set(lossless)):
+                ax.plot([x], [0.96], marker=mk, color=col, mfc="none", ms=7, transform=tr, clip_on=False)
+            ax.text(0.02, 0.90, "hollow at top: lossless", transform=ax.transAxes, fontsize=7, color="gray")
+            xs += [x for x, _, _ in lossless]
         ax.set_xscale("log", base=2)
         ax.set_xticks([0.125, 0.25, 0.5, 1, 2, 4, 8])
         ax.set_xticklabels(["1/8", "1/4", "1/2", "1", "2", "4", "8"])
@@ -757,7 +781,7 @@ def plot(datasets, rd, codecs, path):
         if ys:
             floor = (min(ym) if ym else min(ys)) - 25
             lo = max(min(ys), floor)
-            ax.set_ylim(lo - 2, max(ys) + 3)
+            ax.set_ylim(lo - 2, max(ys) + (8 if lossless else 3))
             if min(ys) < lo:
                 ax.text(0.02, 0.02, "some points below the axis (rd.csv)", transform=ax.transAxes, fontsize=7,
                         color="gray")
@@ -769,7 +793,8 @@ def plot(datasets, rd, codecs, path):
         ax.legend(fontsize=7, loc="lower right")
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    fig.suptitle("MRSV vs peers: PSNR over valid samples vs bits/sample (all samples)", fontsize=12)
+    fig.suptitle("MRSV vs peers: PSNR over valid samples vs bits/sample (all samples)\n"
+                 "mrsv = --bits-per-sample 0.5/1/2/4; mrsv --max-error = d 16/4/1 (0 = lossless)", fontsize=11)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

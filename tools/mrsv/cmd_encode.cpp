@@ -32,7 +32,9 @@ const char kHelp[] =
     "\n"
     "Coding (default: wavelet, lossless):\n"
     "  --coding wavelet|stored  wavelet: B-spline wavelet coding (spec 4, 5); stored: raw samples\n"
-    "  --order K             wavelet order 1..4: Haar, linear, quadratic, cubic (default 4)\n"
+    "  --order K             wavelet order 1..4: Haar, linear, quadratic, cubic (default 2)\n"
+    "  --entropy M           adaptive (context-modelled range coding; default) or baseline\n"
+    "                        (the paper's JPEG-like run/size symbols with Huffman tables)\n"
     "  --levels L            at most L decomposition levels per axis (default 16; fewer on\n"
     "                        short axes, so that padding stays under 1/32 of the axis)\n"
     "  --lossless            every sample exact (integer samples; the default)\n"
@@ -164,7 +166,7 @@ int runEncode(int argc, char** argv) {
   std::string error;
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
-                    "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route"},
+                    "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy"},
                    {"quiet", "help", "lossless"},
                    {"meta"}},
                   &error))
@@ -220,7 +222,7 @@ int runEncode(int argc, char** argv) {
     ++targets;
     return true;
   };
-  double order = 4, levels = 16;
+  double order = 2, levels = 16;
   if (!number("max-error", 0, 524287, &wavelet.max_error) ||
       !number("bits-per-sample", 1e-3, 64, &wavelet.bits_per_sample) ||
       !number("psnr", 1, 400, &wavelet.psnr) || !number("step", 1e-12, 1e300, &wavelet.step) ||
@@ -241,6 +243,11 @@ int runEncode(int argc, char** argv) {
       !number("roi-gain", 1, 1e6, &wavelet.roi_gain))
     return fail(cmd, error, kExitUsage);
   targets = rate_targets;
+  if (args.has("entropy")) {
+    if (args.value("entropy") == "baseline") wavelet.entropy_mode = kEntropyBaseline;
+    else if (args.value("entropy") != "adaptive")
+      return fail(cmd, "--entropy must be adaptive or baseline", kExitUsage);
+  }
   if (args.has("bound-route")) {
     const std::string& r = args.value("bound-route");
     if (r == "residual") wavelet.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;

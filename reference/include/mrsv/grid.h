@@ -60,7 +60,8 @@ std::vector<uint8_t> serializeGridHeader(const GridHeader& header);
 constexpr size_t kWaveletHeaderSize = 24;
 constexpr uint8_t kWaveletFlagHasMask = 0x01;
 constexpr uint8_t kWaveletFlagHasResidual = 0x02;
-constexpr uint8_t kEntropyAdaptive = 1;
+constexpr uint8_t kEntropyBaseline = 0;  // spec 5.10: run/size symbols, Huffman table in the stream
+constexpr uint8_t kEntropyAdaptive = 1;  // spec 5.6, 5.7: context-modelled range coding
 struct WaveletHeader {
   uint8_t order = 4;
   uint8_t levels[3] = {0, 0, 0};

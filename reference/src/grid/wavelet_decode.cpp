@@ -8,6 +8,7 @@
 
 #include "bitstream/range_decoder.h"
 #include "common/byte_reader.h"
+#include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/synthesis_fixed.h"
@@ -38,13 +39,18 @@ int64_t roundShift(int64_t v, int w) {
 }
 
 // Decodes one range-coded array payload; spec 5.6, 5.7.
-Error decodeArrayPayload(const uint8_t* payload, size_t size, uint64_t payload_offset,
-                         const char* field, const ArrayBox& box, ArrayPrediction prediction,
-                         const uint8_t* skip, int64_t* values, int64_t* symbols) {
-  RangeDecoder rc(payload, size);
+Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t size,
+                         uint64_t payload_offset, const char* field, const ArrayBox& box,
+                         ArrayPrediction prediction, const uint8_t* skip, int64_t* values,
+                         int64_t* symbols) {
   auto fail = [&](std::string message) {
     return Error{Status::kBadEntropyPayload, payload_offset, field, std::move(message)};
   };
+  if (entropy_mode == kEntropyBaseline) {  // spec: 5.10
+    std::string problem = decodeBaselineArray(payload, size, box, prediction, skip, values);
+    return problem.empty() ? Error{} : fail(problem);
+  }
+  RangeDecoder rc(payload, size);
   if (!rc.validStart()) return fail("coded data must start with a 0 byte");
   DecodingCoder coder{&rc};
   if (!codeArray(coder, values, symbols, box, prediction, skip))
@@ -90,7 +96,7 @@ Error readMask(const ChunkView& chunk, const DecodeOptions& options, WaveletStat
   ArrayBox box = gridBox(*s->grid);
   if (Error e = checkMemory(box.count() * 17, options, chunk); !e.ok()) return e;
   std::vector<int64_t> values(box.count()), symbols(box.count());
-  if (Error e = decodeArrayPayload(chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
+  if (Error e = decodeArrayPayload(s->header.entropy_mode, chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
                                    "GMSK", box, ArrayPrediction::kNone, nullptr, values.data(),
                                    symbols.data());
       !e.ok())
@@ -151,7 +157,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   std::vector<int64_t> values(box.count()), symbols(box.count());
   ArrayPrediction prediction =
       (band_flags & kBandFlagPredicted) ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone;
-  if (Error e = decodeArrayPayload(coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
+  if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
                                    "GBND", box, prediction, nullptr, values.data(), symbols.data());
       !e.ok())
     return e;
@@ -181,7 +187,7 @@ Error readResidual(const ChunkView& chunk, const DecodeOptions& options, Wavelet
   s->residual.assign(box.count(), 0);
   std::vector<int64_t> symbols(box.count());
   s->residual_step = step;
-  return decodeArrayPayload(chunk.payload + kResidualHeaderSize,
+  return decodeArrayPayload(s->header.entropy_mode, chunk.payload + kResidualHeaderSize,
                             chunk.chunk_length - kResidualHeaderSize,
                             chunk.payloadOffset() + kResidualHeaderSize, "GRES", box,
                             ArrayPrediction::kNone, s->mask.empty() ? nullptr : s->mask.data(),

@@ -9,6 +9,7 @@
 
 #include "bitstream/range_coder_adapter.h"
 #include "common/byte_writer.h"
+#include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
 #include "mrsv/encode.h"
@@ -34,6 +35,20 @@ double readSample(const uint8_t* p, SampleType type) {
     case SampleType::kFloat64: { double v; std::memcpy(&v, p, 8); return v; }
   }
   return 0;
+}
+
+// Appends one coded array in the stream's entropy mode (spec 5.7 or 5.10).
+void encodeArray(uint8_t entropy_mode, int64_t* values, const ArrayBox& box,
+                 ArrayPrediction prediction, const uint8_t* skip, std::vector<uint8_t>* out) {
+  if (entropy_mode == kEntropyBaseline) {
+    encodeBaselineArray(values, box, prediction, skip, out);
+    return;
+  }
+  std::vector<int64_t> symbols(box.count());
+  RangeEncoder rc(out);
+  EncodingCoder coder{&rc};
+  codeArray(coder, values, symbols.data(), box, prediction, skip);
+  rc.finish();
 }
 
 Error invalid(std::string field, std::string message) {
@@ -98,28 +113,45 @@ void fillVoids(std::vector<double>* x, const std::vector<uint8_t>& valid, const 
     if (!valid[i]) (*x)[i] = filled.weight[i] > 0 ? filled.sum[i] : 0.0;
 }
 
-// Sample-domain L2 gain of one coefficient of a 1-D axis: the Euclidean norm of
-// the finest-level coefficients synthesised from a unit impulse. Index 0..L-1:
-// wavelets of level 1..L; index L: scaling functions of the coarsest level.
-std::vector<double> axisGains(const wavelet::AxisPlan& axis) {
-  std::vector<double> gains(static_cast<size_t>(axis.levels) + 1, 1.0);
-  if (axis.levels == 0) return gains;
+// Sample-domain L2 gain of one interior coefficient of a 1-D axis: the
+// Euclidean norm of the finest-level coefficients synthesised from a unit
+// impulse. wavelet[l]: wavelets of level l (1..L); scaling[l]: scaling
+// functions of level l (0..L), each synthesised from a plan of l levels (the
+// same functions up to the padding).
+struct AxisGains {
+  std::vector<double> wavelet, scaling;
+};
+
+double impulseGain(const wavelet::AxisPlan& axis, const Band& band) {
   GridPlan line;
   line.num_dims = 1;
   line.axis[0] = axis;
-  std::vector<Band> bands = wavelet::bandsOf(line);
-  std::vector<double> buffer(axis.size(0));
-  for (const Band& band : bands) {
-    std::fill(buffer.begin(), buffer.end(), 0.0);
-    buffer[band.offset[0] + band.size[0] / 2] = 1.0;  // an interior function
-    wavelet::synthesize(line, buffer.data());
-    double energy = 0;
-    for (double v : buffer) energy += v * v;
-    gains[band.mask == 0 ? static_cast<size_t>(axis.levels) : static_cast<size_t>(band.level - 1)] =
-        std::sqrt(energy);
-  }
-  return gains;
+  std::vector<double> buffer(axis.size(0), 0.0);
+  buffer[band.offset[0] + band.size[0] / 2] = 1.0;  // an interior function
+  wavelet::synthesize(line, buffer.data());
+  double energy = 0;
+  for (double v : buffer) energy += v * v;
+  return std::sqrt(energy);
 }
+
+AxisGains axisGains(const wavelet::AxisPlan& axis) {
+  AxisGains g;
+  g.wavelet.assign(static_cast<size_t>(axis.levels) + 1, 1.0);
+  g.scaling.assign(static_cast<size_t>(axis.levels) + 1, 1.0);
+  for (int l = 1; l <= axis.levels; ++l) {
+    wavelet::AxisPlan sub;
+    if (!wavelet::makeAxisPlan(axis.samples, axis.order, l, &sub)) sub = axis;
+    GridPlan line;
+    line.num_dims = 1;
+    line.axis[0] = sub;
+    for (const Band& band : wavelet::bandsOf(line)) {
+      if (band.mask == 0) g.scaling[static_cast<size_t>(l)] = impulseGain(sub, band);
+      else if (band.level == l) g.wavelet[static_cast<size_t>(l)] = impulseGain(sub, band);
+    }
+  }
+  return g;
+}
+
 
 class GridEncoder {
  public:
@@ -199,6 +231,7 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   }
   // spec: 5.2 and decision D6: x = (sample - c_min) / scale, so x spans [0, R / scale].
   wavelet_.order = static_cast<uint8_t>(options.order);
+  wavelet_.entropy_mode = options.entropy_mode;
   double r = c_max_ - c_min_;
   if (integerSamples()) {
     scale_ = 1;
@@ -250,21 +283,15 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
       }
   wavelet::analyze(plan_, coefficients_.data());
 
-  std::vector<double> gains[3];
+  AxisGains gains[3];
   for (int a = 0; a < 3; ++a) gains[a] = axisGains(plan_.axis[a]);
   for (const Band& b : bands_) {
     double g = 1;
     for (int a = 0; a < 3; ++a) {
       const wavelet::AxisPlan& ax = plan_.axis[a];
       if (ax.levels == 0) continue;
-      if (b.mask & (1 << a)) g *= gains[a][static_cast<size_t>(b.level - 1)];
-      else if (b.mask == 0 || b.level >= ax.levels) g *= gains[a][static_cast<size_t>(ax.levels)];
-      else {
-        // The scaling part of axis a at level b.level, split further below:
-        // its gain is that of the scaling functions of that level.
-        g *= gains[a][static_cast<size_t>(ax.levels)] /
-             std::pow(std::sqrt(2.0), ax.levels - b.level);
-      }
+      if (b.mask & (1 << a)) g *= gains[a].wavelet[static_cast<size_t>(b.level)];
+      else g *= gains[a].scaling[static_cast<size_t>(b.mask == 0 ? ax.levels : std::min(b.level, ax.levels))];
     }
     band_gain_.push_back(g);
   }
@@ -276,12 +303,9 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
     ArrayBox box;
     box.num_dims = header_.num_dims;
     std::copy(size, size + 3, box.size);
-    std::vector<int64_t> mask(n), symbols(n);
+    std::vector<int64_t> mask(n);
     for (size_t i = 0; i < n; ++i) mask[i] = valid_[i] ? 0 : 1;
-    RangeEncoder rc(&mask_chunk_);
-    EncodingCoder coder{&rc};
-    codeArray(coder, mask.data(), symbols.data(), box, ArrayPrediction::kNone, nullptr);
-    rc.finish();
+    encodeArray(wavelet_.entropy_mode, mask.data(), box, ArrayPrediction::kNone, nullptr, &mask_chunk_);
   }
   return {};
 }
@@ -364,7 +388,7 @@ uint64_t GridEncoder::quantizeBand(uint16_t index, double delta, std::vector<int
   const bool coarsest = band.mask == 0;
   // A dead zone for detail coefficients: small ones cost more bits than the
   // error they remove (informative 5.9).
-  const double rounding = coarsest ? 0.5 : 0.4;
+  const double rounding = coarsest ? 0.5 : 0.3;
   const double gain = band_gain_[index];
   const int64_t q_limit = wavelet::kValueLimit / static_cast<int64_t>(step);
   q->assign(uint64_t{band.size[0]} * band.size[1] * band.size[2], 0);
@@ -408,12 +432,8 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
     ArrayBox box;
     box.num_dims = plan_.num_dims;
     for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-    std::vector<int64_t> symbols(q.size());
-    RangeEncoder rc(&payload);
-    EncodingCoder coder{&rc};
-    codeArray(coder, q.data(), symbols.data(), box,
-              coarsest ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone, nullptr);
-    rc.finish();
+    encodeArray(wavelet_.entropy_mode, q.data(), box,
+                coarsest ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone, nullptr, &payload);
   }
   return payload;
 }
@@ -481,7 +501,7 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
   box.size[0] = header_.size_x;
   box.size[1] = header_.size_y;
   box.size[2] = header_.size_z;
-  std::vector<int64_t> r(n, 0), symbols(n);
+  std::vector<int64_t> r(n, 0);
   std::vector<uint8_t> skip(n);
   const int64_t s = residual_step;
   for (size_t i = 0; i < n; ++i) {
@@ -496,10 +516,7 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
   std::vector<uint8_t> payload;
   ByteWriter w(&payload);
   w.u32(residual_step);
-  RangeEncoder rc(&payload);
-  EncodingCoder coder{&rc};
-  codeArray(coder, r.data(), symbols.data(), box, ArrayPrediction::kNone, skip.data());
-  rc.finish();
+  encodeArray(wavelet_.entropy_mode, r.data(), box, ArrayPrediction::kNone, skip.data(), &payload);
   return payload;
 }
 

@@ -42,7 +42,7 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
       return fail(Status::kBadWaveletHeader, 1 + a, "levels",
                   "levels above " + std::to_string(wavelet::kMaxLevels));
   }
-  if (h.entropy_mode != kEntropyAdaptive)
+  if (h.entropy_mode != kEntropyAdaptive && h.entropy_mode != kEntropyBaseline)
     return fail(Status::kUnsupportedCoding, 4, "entropy_mode",
                 "entropy_mode " + std::to_string(h.entropy_mode) + " is not defined in this version");
   if (h.frac_bits > 24) return fail(Status::kBadWaveletHeader, 5, "frac_bits", "frac_bits above 24");
