@@ -27,7 +27,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from make_vectors import CODED_PREFIX, chunk, file_header, write_manifest  # noqa: E402
+from make_vectors import CODED_PREFIX, canonical, chunk, file_header, write_manifest  # noqa: E402
 
 CROPS = os.path.join(HERE, "..", "demo", "data")
 
@@ -55,14 +55,6 @@ def offset_of(chunks, index):
 def find(chunks, ctype, nth=0):
     hits = [i for i, (t, _) in enumerate(chunks) if t == ctype]
     return hits[nth]
-
-
-def canonical(stype, dims, samples, nodata_bits=None):
-    sizes = list(dims) + [1] * (3 - len(dims))
-    nodata = "-" if nodata_bits is None else "%016x" % nodata_bits
-    count = sizes[0] * sizes[1] * sizes[2]
-    line = f"mrsv-canonical-grid 1 {stype} {len(dims)} {sizes[0]} {sizes[1]} {sizes[2]} {count} {nodata}\n"
-    return line.encode("ascii") + samples
 
 
 def crop(name, src, origin, size, nbytes):
