@@ -621,19 +621,25 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     }
     // Route 2: no decomposition (levels 0): the samples themselves, quantised
     // with step 2d+1 (which alone keeps every error within d) and coded with
-    // neighbour prediction. On noisy or piecewise-flat data this beats route 1.
+    // neighbour prediction; or quantised coarser, with a residual layer, which
+    // splits sparse data (CT air, angiograms) into two cheap layers. On noisy or
+    // piecewise-flat data this beats route 1.
     WaveletEncodeOptions flat = options;
     flat.max_levels = 0;
     if (try_predictive) {
       if (Error e = predictive_enc.prepare(header, samples, flat); !e.ok()) return e;
-      if (Error e = predictive_enc.encode(residual_step, 0, metadata, &stream); !e.ok()) return e;
-      ++rep.iterations;
-    }
-    if (try_predictive && (best.empty() || stream.size() < best.size())) {
-      best.swap(stream);
-      best_delta = residual_step;
-      best_residual = 0;
-      used = &predictive_enc;
+      for (int k = 0; k <= 7; ++k) {
+        double delta = std::ldexp(static_cast<double>(residual_step), k);
+        uint32_t with_residual = k == 0 ? 0 : residual_step;
+        if (Error e = predictive_enc.encode(delta, with_residual, metadata, &stream); !e.ok()) return e;
+        ++rep.iterations;
+        if (best.empty() || stream.size() < best.size()) {
+          best.swap(stream);
+          best_delta = delta;
+          best_residual = with_residual;
+          used = &predictive_enc;
+        }
+      }
     }
     if (Error e = finish(std::move(best), best_delta, best_residual); !e.ok()) return e;
     if (rep.max_abs_error > d)
