@@ -11,7 +11,7 @@ Parts (see tools/bench/README.md for the exact definitions and commands):
 Tables go to stdout and to RESULTS/summary.txt, CSVs and rd_curves.png to RESULTS
 (default tools/bench/results/). Temporary files live in a temp dir that is removed.
 
-  /usr/bin/python3 tools/bench/rd_bench.py                 # everything (~15 min on 2 cores)
+  /usr/bin/python3 tools/bench/rd_bench.py                 # everything (10-15 min on 2 cores)
   /usr/bin/python3 tools/bench/rd_bench.py --quick         # mt_st_helens + ct_tooth (+ speed)
   /usr/bin/python3 tools/bench/rd_bench.py --datasets rainier,bonsai --no-speed
 """
@@ -40,7 +40,7 @@ import threading
 import time
 import traceback
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
@@ -54,6 +54,7 @@ TYPE_INFO = {  # file suffix -> (mrsv --type, numpy dtype, bits)
     "uint16le": ("uint16", "<u2", 16),
     "uint8": ("uint8", "u1", 8),
 }
+MRSV_EXTRA = []  # --order K when given on the command line
 TOOLS = ["zstd", "zfp", "opj_compress", "opj_decompress", "cjxl", "djxl", "xz"]
 
 
@@ -146,7 +147,7 @@ class Dataset:
         a = ["--dims", ",".join(map(str, self.dims)), "--type", self.mtype]
         if self.kind == "terrain" and self.mtype == "int16":
             a += ["--nodata", str(NODATA)]
-        return a
+        return a + MRSV_EXTRA
 
 
 NAME_RE = re.compile(r"^(?P<stem>.+?)_(?P<dims>\d+x\d+(?:x\d+)?)_(?P<type>int16le|uint16le|uint8)\.raw\.zst$")
@@ -826,6 +827,8 @@ def versions(args):
     rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
     dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no"],
                            capture_output=True, text=True)
+    out.append(f"mrsv encode options: {' '.join(MRSV_EXTRA) or 'none beyond those listed in README.md'}; wavelet order used: "
+               f"{args.order or args.mrsv_default_order}")
     out.append(f"mrsv: {args.mrsv_orig} built {args.mrsv_mtime}, sha256 {args.mrsv_sha256[:16]}, copied before the run; "
                f"git {rev.stdout.strip()}{' + uncommitted changes' if dirty.stdout.strip() else ''}")
     return out
@@ -845,11 +848,15 @@ def main():
     ap.add_argument("--speed-volume", default="ct_bonsai", help="256^3 volume for the speed part (ct_bonsai)")
     ap.add_argument("--speed-terrain", default="mt_rainier", help="2-D terrain for the speed part (mt_rainier)")
     ap.add_argument("--speed-reps", type=int, default=3)
+    ap.add_argument("--order", type=int, choices=[1, 2, 3, 4],
+                    help="pass --order K to every mrsv encode (default: the encoder's own default)")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2,
                     help="parallel jobs for parts 1-3 (speed always runs alone)")
     ap.add_argument("--tmp", type=Path, default=None, help="parent of the temp dir (system default)")
     args = ap.parse_args()
     args.mrsv = args.mrsv.resolve()
+    if args.order:
+        MRSV_EXTRA.extend(["--order", str(args.order)])
 
     if not args.mrsv.exists():
         sys.exit(f"rd_bench: {args.mrsv} not found: build with ninja -C build")
@@ -888,6 +895,9 @@ def main():
         args.mrsv_sha256 = hashlib.sha256(snap.read_bytes()).hexdigest()
         args.mrsv_mtime = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(args.mrsv.stat().st_mtime))
         args.mrsv_orig, args.mrsv = args.mrsv, snap
+        hp = subprocess.run([str(snap), "encode", "--help"], capture_output=True, text=True)
+        m = re.search(r"--order K.*\(default (\d+)\)", hp.stdout + hp.stderr)
+        args.mrsv_default_order = f"{m[1]} (the encoder default)" if m else "the encoder default"
         log(f"temp dir {root}; data sets: {', '.join(d.name for d in sel)}")
         for ds in ([] if args.speed_only else sel):
             prepare(ds, root)
