@@ -824,13 +824,10 @@ def versions(args):
         out.append(f"cpu: {cpu[0]} x{len(cpu)}" if cpu else "")
     except OSError:
         pass
-    rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True)
     out.append(f"mrsv encode options: {' '.join(MRSV_EXTRA) or 'none beyond those listed in README.md'}; wavelet order used: "
                f"{args.order or args.mrsv_default_order}")
-    out.append(f"mrsv: {args.mrsv_orig} built {args.mrsv_mtime}, sha256 {args.mrsv_sha256[:16]}, copied before the run; "
-               f"git {rev.stdout.strip()}{' + uncommitted changes' if dirty.stdout.strip() else ''}")
+    out.append(f"mrsv: {args.mrsv_orig} built {args.mrsv_mtime}, sha256 {args.mrsv_sha256[:16]}, copied at the start; "
+               f"work tree then: git {args.git_state}")
     return out
 
 
@@ -895,6 +892,10 @@ def main():
         args.mrsv_sha256 = hashlib.sha256(snap.read_bytes()).hexdigest()
         args.mrsv_mtime = time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(args.mrsv.stat().st_mtime))
         args.mrsv_orig, args.mrsv = args.mrsv, snap
+        rev = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+        dirty = subprocess.run(["git", "-C", str(REPO), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True)
+        args.git_state = rev.stdout.strip() + (" + uncommitted changes" if dirty.stdout.strip() else "")
         hp = subprocess.run([str(snap), "encode", "--help"], capture_output=True, text=True)
         m = re.search(r"--order K.*\(default (\d+)\)", hp.stdout + hp.stderr)
         args.mrsv_default_order = f"{m[1]} (the encoder default)" if m else "the encoder default"
