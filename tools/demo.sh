@@ -115,7 +115,7 @@ while read -r n total bytes; do
   printf '  first %6d bytes (%2d of %d bands): %s\n' "$bytes" "$n" "$total" "$(psnr "$helens" "$out/prefix.raw" int16)"
 done <"$out/cuts.txt"
 "$mrsv" decode --quiet --levels 2 "$out/prog.mrsv" "$out/quarter.nrrd"
-echo "  --levels 2: a reduced-resolution grid: $(grep sizes "$out/quarter.nrrd")"
+echo "  --levels 2: a reduced-resolution grid: $(grep -a -m1 "^sizes" "$out/quarter.nrrd")"
 
 echo
 echo "== 6. damage is reported, never decoded =="
