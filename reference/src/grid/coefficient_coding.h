@@ -52,14 +52,30 @@ inline uint32_t blockEdge(int num_dims) { return num_dims == 1 ? 64 : num_dims =
 
 // spec: 5.7.3 magnitude class from the weighted sum of the neighbours'
 // magnitudes: 0 for 0, then one class per doubling (1-2, 3-4, 5-8, ...).
-inline int magnitudeClass(uint64_t s) {
-  int c = 0;
-  uint64_t bound = 0;
-  while (c < kMagnitudeClasses - 1 && s > bound) {
-    ++c;
-    bound = bound == 0 ? 2 : 2 * bound;
+// Class kMagnitudeClasses - 1 = 9 takes every sum above 256; below, a table
+// (built by the rule itself) replaces a loop whose exit is hard to predict.
+struct MagnitudeClassTable {
+  static constexpr uint64_t kLast = 256;  // the largest sum of class 8
+  uint8_t cls[kLast + 1];
+  constexpr MagnitudeClassTable() : cls() {
+    int c = 0;
+    uint64_t bound = 0;
+    for (uint64_t s = 0; s <= kLast; ++s) {
+      while (c < kMagnitudeClasses - 1 && s > bound) {
+        ++c;
+        bound = bound == 0 ? 2 : 2 * bound;
+      }
+      cls[s] = static_cast<uint8_t>(c);
+    }
   }
-  return c;
+};
+inline constexpr MagnitudeClassTable kMagnitudeClassTable{};
+static_assert(kMagnitudeClassTable.cls[MagnitudeClassTable::kLast] == kMagnitudeClasses - 2 &&
+                  kMagnitudeClassTable.cls[1] == 1 && kMagnitudeClassTable.cls[3] == 2,
+              "classes 1..8 end at 2, 4, ..., 256");
+
+inline int magnitudeClass(uint64_t s) {
+  return s > MagnitudeClassTable::kLast ? kMagnitudeClasses - 1 : kMagnitudeClassTable.cls[s];
 }
 
 inline uint64_t magnitudeOf(int64_t v) {
@@ -94,29 +110,13 @@ inline int64_t predictNeighbour(const int64_t* v, const ArrayBox& box, uint32_t 
   return at(0, 0, 1);
 }
 
-// Codes one value's symbol `s` (the value or its prediction residual) with
-// contexts from the already coded symbols `sym` around it. Returns false when a
-// decoded magnitude prefix is longer than kMaxMagnitudeBits - 1 (spec 5.7.3).
+// The sign and magnitude of a nonzero symbol *sym (spec 5.7.3 steps 3 to 5), in
+// magnitude class `cls`. Returns false when a decoded magnitude prefix is longer
+// than kMaxMagnitudeBits - 1.
 template <class Coder>
-bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t* sym, const ArrayBox& box, uint32_t x,
-                uint32_t y, uint32_t z) {
-  const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
-  const size_t i = x + y * sx + z * sxy;
-  int64_t left = x > 0 ? sym[i - 1] : 0;
-  uint64_t around = 2 * magnitudeOf(left);
-  if (y > 0) {
-    around += 2 * magnitudeOf(sym[i - sx]);
-    if (x > 0) around += magnitudeOf(sym[i - sx - 1]);
-    if (x + 1 < box.size[0]) around += magnitudeOf(sym[i - sx + 1]);
-  }
-  if (z > 0) around += 2 * magnitudeOf(sym[i - sxy]);
-  int cls = magnitudeClass(around);
-  int64_t value = Coder::kEncoding ? sym[i] : 0;
+bool codeNonzeroSymbol(Coder& coder, ArrayContexts& ctx, int cls, int64_t left, int64_t* sym) {
+  int64_t value = Coder::kEncoding ? *sym : 0;
   uint64_t mag = magnitudeOf(value);
-  if (coder.bit(&ctx.zero[cls], mag != 0) == 0) {
-    sym[i] = 0;
-    return true;
-  }
   int sign_ctx = left == 0 ? 0 : left > 0 ? 1 : 2;
   int negative = coder.bit(&ctx.sign[sign_ctx], value < 0);
   // |s| - 1 as an Elias-gamma-like code: the bit length of |s| in adaptive
@@ -145,14 +145,31 @@ bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t* sym, const ArrayBox& 
     done += chunk;
   }
   uint64_t decoded = (uint64_t{1} << n) | low;
-  sym[i] = negative ? -static_cast<int64_t>(decoded) : static_cast<int64_t>(decoded);
+  *sym = negative ? -static_cast<int64_t>(decoded) : static_cast<int64_t>(decoded);
   return true;
+}
+
+// Codes one value's symbol *sym (the value or its prediction residual) given
+// `left`, the symbol at x - 1, and `around`, the weighted sum of the
+// neighbours' magnitudes (spec 5.7.3). Most symbols are 0 and end at the first
+// bit, so that part is kept apart from the rest. Returns false when a decoded
+// magnitude prefix is longer than kMaxMagnitudeBits - 1.
+template <class Coder>
+bool codeSymbol(Coder& coder, ArrayContexts& ctx, int64_t left, uint64_t around, int64_t* sym) {
+  const int cls = magnitudeClass(around);
+  if (coder.bit(&ctx.zero[cls], Coder::kEncoding && *sym != 0) == 0) {
+    *sym = 0;
+    return true;
+  }
+  return codeNonzeroSymbol(coder, ctx, cls, left, sym);
 }
 
 // spec: 5.7 array(): codes every value of `values` over `box`, block by block.
 // `skip` (may be null) marks positions that are not coded and hold 0 (an
 // encoder must pass 0 there too, since predictions read them).
-// `symbols` is scratch of box.count() entries. Returns false on a decoding error.
+// `symbols` is scratch of box.count() entries, its contents on entry unused (a
+// symbol is read only after it is coded); without prediction it may be `values`
+// itself. Returns false on a decoding error.
 template <class Coder>
 bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& box,
                ArrayPrediction prediction, const uint8_t* skip) {
@@ -161,6 +178,7 @@ bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& 
   const uint32_t bx = (box.size[0] + edge - 1) / edge;
   const uint32_t by = box.num_dims >= 2 ? (box.size[1] + edge - 1) / edge : 1;
   const uint32_t bz = box.num_dims >= 3 ? (box.size[2] + edge - 1) / edge : 1;
+  const uint32_t size_x = box.size[0];
   const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
   // One flag per block: nonzero[] of the previous block row and slice give contexts.
   uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(size_t{bx} * by * bz, 1));
@@ -189,22 +207,62 @@ bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& 
         int c = (kx > 0 && nonzero[b - 1]) | ((ky > 0 && nonzero[b - bx]) << 1) |
                 ((kz > 0 && nonzero[b - size_t{bx} * by]) << 2);
         nonzero[b] = static_cast<uint8_t>(coder.bit(&ctx.block[c], nonzero[b]));
-        for (uint32_t z = z0; z < z1 && ok; ++z)
-          for (uint32_t y = y0; y < y1 && ok; ++y)
-            for (uint32_t x = x0; x < x1; ++x) {
-              size_t i = x + y * sx + z * sxy;
-              if (!nonzero[b] || (skip && skip[i])) {
-                symbols[i] = 0;
-              } else if (!codeSymbol(coder, ctx, symbols, box, x, y, z)) {
-                ok = false;
-                break;
-              }
-              if (!Coder::kEncoding) {
-                values[i] = symbols[i];
-                if (prediction == ArrayPrediction::kNeighbour && !(skip && skip[i]))
-                  values[i] = clampArrayValue(values[i] + predictNeighbour(values, box, x, y, z));
+        if (!nonzero[b] && prediction == ArrayPrediction::kNone) {
+          // No symbol is coded in the block: every symbol (and decoded value) is 0.
+          for (uint32_t z = z0; z < z1; ++z)
+            for (uint32_t y = y0; y < y1; ++y) {
+              const size_t start = y * sx + z * sxy;
+              for (uint32_t x = x0; x < x1; ++x) {
+                symbols[start + x] = 0;
+                if (!Coder::kEncoding) values[start + x] = 0;
               }
             }
+          continue;
+        }
+        // A local flag, not nonzero[b]: the stores below could alias a byte array,
+        // which would force a reload at every position.
+        const bool coded = nonzero[b] != 0;
+        for (uint32_t z = z0; z < z1 && ok; ++z)
+          for (uint32_t y = y0; y < y1 && ok; ++y) {
+            const size_t start = y * sx + z * sxy;
+            int64_t* row = symbols + start;
+            int64_t* value_row = values + start;
+            const uint8_t* skip_row = skip ? skip + start : nullptr;
+            const int64_t* up = y > 0 ? row - sx : nullptr;
+            const int64_t* back = z > 0 ? row - sxy : nullptr;
+            // The neighbour above to the right (spec 5.7.3) of the row's last
+            // position is in the next block; within this block's rows (y > y0)
+            // that block is not coded yet and the neighbour counts as 0.
+            const uint32_t up_right_end = y > y0 ? x1 : size_x;
+            // The neighbours of position x, moved along the row: the symbol at
+            // x - 1 and the magnitudes above at x - 1, x (and x + 1 just below;
+            // it is 0 by the rule above only at the row's last position).
+            int64_t left = x0 > 0 ? row[x0 - 1] : 0;
+            uint64_t up_left = up && x0 > 0 ? magnitudeOf(up[x0 - 1]) : 0;
+            uint64_t up_mid = up ? magnitudeOf(up[x0]) : 0;
+            for (uint32_t x = x0; x < x1; ++x) {
+              const uint64_t up_right = up && x + 1 < up_right_end ? magnitudeOf(up[x + 1]) : 0;
+              if (!coded || (skip_row && skip_row[x])) {
+                row[x] = 0;
+              } else {
+                uint64_t around = 2 * magnitudeOf(left) + 2 * up_mid + up_left + up_right;
+                if (back) around += 2 * magnitudeOf(back[x]);
+                if (!codeSymbol(coder, ctx, left, around, &row[x])) {
+                  ok = false;
+                  break;
+                }
+              }
+              left = row[x];
+              up_left = up_mid;
+              up_mid = up_right;
+              if (!Coder::kEncoding) {
+                value_row[x] = left;
+                if (prediction == ArrayPrediction::kNeighbour && !(skip_row && skip_row[x]))
+                  value_row[x] =
+                      clampArrayValue(value_row[x] + predictNeighbour(values, box, x, y, z));
+              }
+            }
+          }
       }
   std::free(nonzero);
   return ok;

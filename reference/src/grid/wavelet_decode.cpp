@@ -3,7 +3,10 @@
 // every conforming decoder produces the same samples.
 #include "grid/wavelet_decode.h"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
+#include <memory>
 #include <new>
 
 #include "bitstream/range_decoder.h"
@@ -32,10 +35,11 @@ int64_t dequantize(int64_t q, uint64_t step) {
 }
 
 // floor((v + 2^(w-1)) / 2^w): round half up, for negative values too (spec 5.8.2).
+// C++17 leaves >> of a negative value to the implementation; ~(~t >> w) shifts
+// a non-negative value and is the floor for t < 0.
 int64_t roundShift(int64_t v, int w) {
-  if (w == 0) return v;
-  int64_t t = v + (int64_t{1} << (w - 1));
-  return t >= 0 ? t >> w : -((-t - 1) >> w) - 1;
+  const int64_t t = v + (w == 0 ? 0 : int64_t{1} << (w - 1));
+  return t >= 0 ? t >> w : ~(~t >> w);
 }
 
 // Decodes one range-coded array payload; spec 5.6, 5.7.
@@ -69,7 +73,13 @@ struct WaveletState {
   bool seen_residual = false;
   wavelet::GridPlan plan;
   std::vector<wavelet::Band> bands;
-  std::vector<int64_t> coefficients;  // padded array, Mallat layout
+  // The padded array in the Mallat layout; null until a band has coded data.
+  // Not zeroed when allocated: each band's box is written when the band is read
+  // (step 0: zeros) and the boxes of bands not read are zeroed before synthesis.
+  std::unique_ptr<int64_t[]> coefficients;
+  std::vector<uint8_t> band_written;  // per band of the plan
+  std::vector<int64_t> band_values;   // scratch of the largest band decoded so far
+  std::vector<int64_t> band_symbols;  // scratch for predicted bands
   std::vector<uint8_t> mask;          // 1 = no data; empty without a mask
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
@@ -95,10 +105,11 @@ Error checkMemory(uint64_t bytes, const DecodeOptions& options, const ChunkView&
 Error readMask(const ChunkView& chunk, const DecodeOptions& options, WaveletState* s) {
   ArrayBox box = gridBox(*s->grid);
   if (Error e = checkMemory(box.count() * 17, options, chunk); !e.ok()) return e;
-  std::vector<int64_t> values(box.count()), symbols(box.count());
+  // Without prediction the coded symbols are the values: one array serves as both.
+  std::vector<int64_t> values(box.count());
   if (Error e = decodeArrayPayload(s->header.entropy_mode, chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
                                    "GMSK", box, ArrayPrediction::kNone, nullptr, values.data(),
-                                   symbols.data());
+                                   values.data());
       !e.ok())
     return e;
   s->mask.resize(values.size());
@@ -139,37 +150,52 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   size_t coded_size = chunk.chunk_length - kBandHeaderSize;
   if (step == 0) {
     if (coded_size != 0) return fail(4, "step", "a band with step 0 has no coded data");
-    return {};  // all coefficients of the band are zero
+    return {};  // all coefficients of the band are zero (written before synthesis)
   }
-  if (s->coefficients.empty()) {
+  if (!s->coefficients) {
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, chunk); !e.ok()) return e;
-    try {
-      s->coefficients.assign(padded, 0);
-    } catch (const std::bad_alloc&) {
-      return checkMemory(UINT64_MAX, options, chunk);
-    }
+    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
   }
   const wavelet::Band& band = s->bands[index];
   ArrayBox box;
   box.num_dims = s->plan.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-  std::vector<int64_t> values(box.count()), symbols(box.count());
   ArrayPrediction prediction =
       (band_flags & kBandFlagPredicted) ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone;
+  // Scratch kept from band to band; array() writes every entry, so it is not
+  // cleared. Without prediction the coded symbols are the values: one array
+  // serves as both.
+  try {
+    if (s->band_values.size() < box.count()) s->band_values.resize(box.count());
+    if (prediction == ArrayPrediction::kNeighbour && s->band_symbols.size() < box.count())
+      s->band_symbols.resize(box.count());
+  } catch (const std::bad_alloc&) {
+    return checkMemory(UINT64_MAX, options, chunk);
+  }
+  int64_t* values = s->band_values.data();
+  int64_t* symbols = prediction == ArrayPrediction::kNeighbour ? s->band_symbols.data() : values;
   if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
-                                   "GBND", box, prediction, nullptr, values.data(), symbols.data());
+                                   "GBND", box, prediction, nullptr, values, symbols);
       !e.ok())
     return e;
-  // Place the band in the Mallat layout.
+  // Place the band in the Mallat layout, dequantised (spec 5.4): q * step, exact
+  // for |q| <= kValueLimit / step, else saturated.
   const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
-  size_t k = 0;
+  const uint64_t limit = static_cast<uint64_t>(kValueLimit) / step;
+  const int64_t signed_step = static_cast<int64_t>(step);
+  const int64_t* src = values;
   for (uint32_t z = 0; z < box.size[2]; ++z)
-    for (uint32_t y = 0; y < box.size[1]; ++y) {
-      int64_t* row = s->coefficients.data() + (band.offset[0] + (band.offset[1] + y) * px +
-                                               (band.offset[2] + z) * pxy);
-      for (uint32_t x = 0; x < box.size[0]; ++x) row[x] = dequantize(values[k++], step);
+    for (uint32_t y = 0; y < box.size[1]; ++y, src += box.size[0]) {
+      int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
+                                              (band.offset[2] + z) * pxy);
+      for (uint32_t x = 0; x < box.size[0]; ++x) {
+        const int64_t q = src[x];
+        row[x] = magnitudeOf(q) <= limit ? q * signed_step : dequantize(q, step);
+      }
     }
+  s->band_written[index] = 1;
   return {};
 }
 
@@ -185,13 +211,13 @@ Error readResidual(const ChunkView& chunk, const DecodeOptions& options, Wavelet
   ArrayBox box = gridBox(*s->grid);
   if (Error e = checkMemory(box.count() * 16, options, chunk); !e.ok()) return e;
   s->residual.assign(box.count(), 0);
-  std::vector<int64_t> symbols(box.count());
   s->residual_step = step;
+  // Without prediction the coded symbols are the values: one array serves as both.
   return decodeArrayPayload(s->header.entropy_mode, chunk.payload + kResidualHeaderSize,
                             chunk.chunk_length - kResidualHeaderSize,
                             chunk.payloadOffset() + kResidualHeaderSize, "GRES", box,
                             ArrayPrediction::kNone, s->mask.empty() ? nullptr : s->mask.data(),
-                            s->residual.data(), symbols.data());
+                            s->residual.data(), s->residual.data());
 }
 
 template <class T>
@@ -235,18 +261,75 @@ void writeSample(const GridHeader& g, const WaveletHeader& w, int64_t value, uin
   }
 }
 
+// spec: 5.8.2 at full resolution, integer samples of type T: output position k
+// is grid position k, so the mask and the residual are read at k. Row by row,
+// with the common case (no mask, no residual) a loop of its own.
+template <class T>
+void integerSamples(const WaveletState& s, uint8_t* out) {
+  const GridHeader& g = *s.grid;
+  const int w = s.header.frac_bits;
+  const int64_t offset = static_cast<int64_t>(s.header.value_offset);
+  constexpr int64_t lo = std::numeric_limits<T>::min(), hi = std::numeric_limits<T>::max();
+  auto clamp = [](int64_t v) { return v < lo ? lo : v > hi ? hi : v; };
+  auto store = [](int64_t v, uint8_t* dst) { storeLittleEndian(static_cast<T>(v), dst); };
+  const uint8_t* mask = s.mask.empty() ? nullptr : s.mask.data();
+  const int64_t* residual = s.residual.empty() ? nullptr : s.residual.data();
+  const int64_t residual_step = s.residual_step;
+  uint8_t nodata[8];
+  std::memcpy(nodata, &g.nodata_bits, 8);
+  const uint64_t px = s.plan.axis[0].size(0), pxy = px * s.plan.axis[1].size(0);
+  // Sizes and pointers in locals: the byte stores below could alias anything else.
+  const uint32_t nx = g.size_x, ny = g.size_y, nz = g.size_z;
+  const int64_t* coefficients = s.coefficients.get();
+  size_t k = 0;
+  for (uint32_t z = 0; z < nz; ++z)
+    for (uint32_t y = 0; y < ny; ++y, k += nx) {
+      const int64_t* src = coefficients + y * px + z * pxy;
+      uint8_t* dst = out + k * sizeof(T);
+      if (!mask && !residual) {
+        for (uint32_t x = 0; x < nx; ++x)
+          store(clamp(roundShift(src[x], w) + offset), dst + x * sizeof(T));
+        continue;
+      }
+      for (uint32_t x = 0; x < nx; ++x) {
+        if (mask && mask[k + x]) {
+          std::memcpy(dst + x * sizeof(T), nodata, sizeof(T));
+          continue;
+        }
+        // Clamped before and after the residual, so that an encoder can compute
+        // the residual from the decoded samples alone.
+        int64_t v = clamp(roundShift(src[x], w) + offset);
+        if (residual) v = clamp(v + residual[k + x] * residual_step);
+        store(v, dst + x * sizeof(T));
+      }
+    }
+}
+
 // spec: 5.8 synthesis and output mapping.
 Error produceSamples(const DecodeOptions& options, const ChunkView& last, WaveletState* s,
                      DecodedGrid* out) {
   const GridHeader& g = *s->grid;
   const int stop = options.reduce_levels < s->plan.maxLevels() ? options.reduce_levels
                                                                 : s->plan.maxLevels();
-  if (s->coefficients.empty()) {  // every band so far had step 0
+  if (!s->coefficients) {  // every band so far had step 0
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, last); !e.ok()) return e;
-    s->coefficients.assign(padded, 0);
+    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    if (!s->coefficients) return checkMemory(UINT64_MAX, options, last);
   }
-  wavelet::synthesizeFixed(s->plan, s->coefficients.data(), stop);
+  // The bands with step 0 and those not (yet) in the stream are zero.
+  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
+  for (size_t b = 0; b < s->bands.size(); ++b) {
+    if (s->band_written[b]) continue;
+    const wavelet::Band& band = s->bands[b];
+    for (uint32_t z = 0; z < band.size[2]; ++z)
+      for (uint32_t y = 0; y < band.size[1]; ++y) {
+        int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
+                                                (band.offset[2] + z) * pxy);
+        std::fill(row, row + band.size[0], 0);
+      }
+  }
+  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
 
   // Output box: the low-pass block of level `stop`, cut to what covers the grid.
   uint32_t size[3];
@@ -269,11 +352,22 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
       !e.ok())
     return e;
   out->samples.assign(count * bytes_per_sample, 0);
+  out->has_samples = true;
   const bool full = stop == 0;
+  if (full) {
+    uint8_t* samples = out->samples.data();
+    switch (g.sample_type) {
+      case SampleType::kUint8: integerSamples<uint8_t>(*s, samples); return {};
+      case SampleType::kInt16: integerSamples<int16_t>(*s, samples); return {};
+      case SampleType::kUint16: integerSamples<uint16_t>(*s, samples); return {};
+      case SampleType::kInt32: integerSamples<int32_t>(*s, samples); return {};
+      default: break;
+    }
+  }
+  // Floating-point samples, and reduced resolution: one sample at a time.
   const int w = s->header.frac_bits;
   const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;
   const int64_t offset = static_cast<int64_t>(s->header.value_offset);
-  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
   uint8_t nodata[8];
   std::memcpy(nodata, &g.nodata_bits, 8);
   size_t k = 0;
@@ -302,7 +396,6 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
         }
         writeSample(g, s->header, v, dst);
       }
-  out->has_samples = true;
   return {};
 }
 
@@ -326,6 +419,7 @@ Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out) {
       const int levels[3] = {s.header.levels[0], s.header.levels[1], s.header.levels[2]};
       wavelet::makeGridPlan(out->header.num_dims, samples, s.header.order, levels, &s.plan);
       s.bands = wavelet::bandsOf(s.plan);
+      s.band_written.assign(s.bands.size(), 0);
       out->bands_total = static_cast<uint32_t>(s.bands.size());
       continue;
     }
