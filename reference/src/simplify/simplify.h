@@ -1,0 +1,72 @@
+// Edge-collapse simplification: the first stage of the PM encoder (spec 6.9).
+//
+// The simplifier only decides WHICH half-edge collapses to make and in what
+// order; the PM encoder (pm/pm_encode.cpp) replays them to write the stream.
+// A half-edge collapse merges vertex `removed` into vertex `kept`; with
+// Placement::kEndpoint `kept` keeps its position, with kFree it moves to
+// `kept_position`. Collapses are grouped in batches: the collapses of one
+// batch are independent (see SimplifyResult), so the decoder may undo them
+// in any order, which is what makes the stream's vertex addressing cheap.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mrsv/mesh.h"
+
+namespace mrsv {
+
+enum class CollapseCost {
+  kQuadric,  // Garland-Heckbert quadric error
+  kPaper,    // Staadt-Gross section 6.1 / 7.1: normal, edge-length and equilateral energies
+};
+
+enum class Placement {
+  kEndpoint,  // the kept vertex stays where it is (half-edge collapse)
+  kFree,      // the kept vertex moves (quadric-optimal position, clamped to the edge's neighbourhood)
+};
+
+struct SimplifyOptions {
+  CollapseCost cost = CollapseCost::kQuadric;
+  Placement placement = Placement::kEndpoint;
+  // Weights of the paper's energies (section 7.1 preset: 50, 1, 5).
+  double weight_normal = 50.0;
+  double weight_edge_length = 1.0;
+  double weight_equilateral = 5.0;
+  // Stop when no more than this many triangles remain (0: as far as the
+  // consistency rules allow).
+  uint64_t target_triangles = 0;
+  // Stop after this many seconds of collapsing (0: no limit); the result is
+  // still complete and valid, only less simplified.
+  double time_budget_seconds = 0.0;
+  // Called now and then with the fraction done, in [0, 1].
+  std::function<void(double)> progress;
+};
+
+struct HalfEdgeCollapse {
+  uint32_t removed = 0;  // vertex index in the input mesh
+  uint32_t kept = 0;     // vertex index in the input mesh
+  std::array<double, 3> kept_position{};  // where `kept` is after the collapse
+};
+
+// batches[0] is applied first to the input mesh, then batches[1], and so on.
+// Independence within a batch: for two collapses c1, c2 of one batch, neither
+// endpoint of c2 is an endpoint of c1 or a neighbour of an endpoint of c1 in
+// the mesh at the start of the batch (and vice versa). Every collapse is
+// valid when made: link condition, boundary rules of the paper's Table 1
+// (spec 6.9), no flipped or degenerate triangle, no non-manifold result.
+struct SimplifyResult {
+  std::vector<std::vector<HalfEdgeCollapse>> batches;
+  uint64_t final_triangles = 0;
+  uint64_t final_vertices = 0;  // vertices still used by a triangle
+};
+
+// The input must be an oriented 2-manifold, possibly with boundary (see
+// mesh_repair.h); returns false with one line in `error` otherwise.
+bool simplifyMesh(const TriangleMesh& mesh, const SimplifyOptions& options,
+                  SimplifyResult* result, std::string* error);
+
+}  // namespace mrsv
