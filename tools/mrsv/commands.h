@@ -13,6 +13,7 @@ int runEncode(int argc, char** argv);
 int runDecode(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runCheck(int argc, char** argv);
+int runCompare(int argc, char** argv);
 
 // Meshes (cmd_mesh.cpp): encode dispatches when an argument names a mesh file;
 // decode and check dispatch on the stream's first chunk.

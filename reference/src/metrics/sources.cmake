@@ -6,6 +6,7 @@
 set(MRSV_METRICS_SOURCES
   reference/src/metrics/surface_sampling.cpp
   reference/src/metrics/surface_distance.cpp)
-set(MRSV_METRICS_TOOL_SOURCES)
+set(MRSV_METRICS_TOOL_SOURCES
+  tools/mrsv/cmd_compare.cpp)
 set(MRSV_METRICS_TESTS
   reference/tests/surface_distance_test.cpp)
