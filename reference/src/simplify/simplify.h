@@ -44,6 +44,13 @@ struct SimplifyOptions {
   double time_budget_seconds = 0.0;
   // Called now and then with the fraction done, in [0, 1].
   std::function<void(double)> progress;
+  // The batch rule: a batch takes, cheapest first, the consistent collapses
+  // whose endpoints no earlier collapse of the batch has locked, as long as
+  // their cost is at most batch_cost_ratio times the cost of the batch's first
+  // collapse, and at most batch_max_fraction of the live vertices. Larger
+  // batches make the stream smaller; greedier ones make the result worse.
+  double batch_cost_ratio = 4.0;
+  double batch_max_fraction = 1.0;
 };
 
 struct HalfEdgeCollapse {

@@ -1,0 +1,137 @@
+#include "simplify/collapse_costs.h"
+
+#include <cmath>
+
+namespace mrsv::simplify {
+
+namespace {
+
+// Below this det / (trace / 3)^3 the minimiser of a quadric is too unstable
+// to use: it means one principal curvature direction is pinned down less than
+// about 1e-3 as firmly as the mean.
+constexpr double kConditionLimit = 1e-6;
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+}  // namespace
+
+Quadric Quadric::plane(const Vec3& n, double d, double weight) {
+  Quadric r;
+  const double a = n[0], b = n[1], c = n[2];
+  r.q = {weight * a * a, weight * a * b, weight * a * c, weight * a * d, weight * b * b,
+         weight * b * c, weight * b * d, weight * c * c, weight * c * d, weight * d * d};
+  return r;
+}
+
+bool Quadric::minimizer(Vec3* out) const {
+  // Solve A x = -b by the adjugate: A is symmetric,
+  // [q0 q1 q2; q1 q4 q5; q2 q5 q7], b = (q3, q6, q8).
+  const double c00 = q[4] * q[7] - q[5] * q[5];
+  const double c01 = q[2] * q[5] - q[1] * q[7];
+  const double c02 = q[1] * q[5] - q[2] * q[4];
+  const double c11 = q[0] * q[7] - q[2] * q[2];
+  const double c12 = q[1] * q[2] - q[0] * q[5];
+  const double c22 = q[0] * q[4] - q[1] * q[1];
+  const double det = q[0] * c00 + q[1] * c01 + q[2] * c02;
+  const double mean = (q[0] + q[4] + q[7]) / 3.0;
+  if (!(mean > 0.0) || !(det > kConditionLimit * mean * mean * mean)) return false;
+  const double inv = -1.0 / det;
+  (*out)[0] = inv * (c00 * q[3] + c01 * q[6] + c02 * q[8]);
+  (*out)[1] = inv * (c01 * q[3] + c11 * q[6] + c12 * q[8]);
+  (*out)[2] = inv * (c02 * q[3] + c12 * q[6] + c22 * q[8]);
+  return std::isfinite((*out)[0]) && std::isfinite((*out)[1]) && std::isfinite((*out)[2]);
+}
+
+void buildQuadrics(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   double boundary_weight, std::vector<Quadric>* quadrics) {
+  quadrics->assign(topo.numVertices(), Quadric{});
+  for (uint32_t t = 0; t < topo.numTriangles(); ++t) {
+    if (!topo.triangleAlive(t)) continue;
+    const uint32_t v[3] = {topo.vertexOf(3 * t), topo.vertexOf(3 * t + 1), topo.vertexOf(3 * t + 2)};
+    const Vec3 n = cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
+    const double twice_area = length(n);
+    if (twice_area > 0.0) {
+      const Vec3 u = {n[0] / twice_area, n[1] / twice_area, n[2] / twice_area};
+      const Quadric p = Quadric::plane(u, -dot(u, positions[v[0]]), 0.5 * twice_area);
+      for (uint32_t x : v) (*quadrics)[x].add(p);
+    }
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t h = 3 * t + i;
+      if (!topo.edgeOnBoundary(h) || !(twice_area > 0.0)) continue;
+      const uint32_t a = v[i];
+      const uint32_t b = v[(i + 1) % 3];
+      const Vec3 e = sub(positions[b], positions[a]);
+      Vec3 m = cross(e, n);
+      const double ml = length(m);
+      if (!(ml > 0.0)) continue;
+      m = {m[0] / ml, m[1] / ml, m[2] / ml};
+      const Quadric p = Quadric::plane(m, -dot(m, positions[a]), boundary_weight * dot(e, e));
+      (*quadrics)[a].add(p);
+      (*quadrics)[b].add(p);
+    }
+  }
+}
+
+Vec3 vertexNormal(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t v) {
+  Vec3 sum = {0.0, 0.0, 0.0};
+  const Vec3& p = positions[v];
+  topo.forEachOutgoing(v, [&](uint32_t h) {
+    const Vec3& x = positions[topo.target(h)];
+    const Vec3& y = positions[topo.vertexOf(EdgeTopology::prev(h))];
+    const Vec3 n = cross(sub(x, p), sub(y, p));
+    sum = {sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]};
+  });
+  const double l = length(sum);
+  if (!(l > 0.0)) return {0.0, 0.0, 0.0};
+  return {sum[0] / l, sum[1] / l, sum[2] / l};
+}
+
+namespace {
+
+// E(T) = sum over the three edges of (l_e - m)^2, m the mean edge length.
+inline double equilateralEnergy(const Vec3& a, const Vec3& b, const Vec3& c, double unit) {
+  const double l0 = length(sub(b, a)) * unit;
+  const double l1 = length(sub(c, b)) * unit;
+  const double l2 = length(sub(a, c)) * unit;
+  const double m = (l0 + l1 + l2) / 3.0;
+  return (l0 - m) * (l0 - m) + (l1 - m) * (l1 - m) + (l2 - m) * (l2 - m);
+}
+
+// Sum of E(after) - E(before) over the triangles of v's fan without `other`,
+// v going to `to`.
+double fanEquilateralChange(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                            uint32_t v, uint32_t other, const Vec3& to, double unit) {
+  double change = 0.0;
+  const Vec3& from = positions[v];
+  topo.forEachOutgoing(v, [&](uint32_t h) {
+    const uint32_t x = topo.target(h);
+    const uint32_t y = topo.vertexOf(EdgeTopology::prev(h));
+    if (x == other || y == other) return;
+    change += equilateralEnergy(to, positions[x], positions[y], unit) -
+              equilateralEnergy(from, positions[x], positions[y], unit);
+  });
+  return change;
+}
+
+}  // namespace
+
+double paperEnergy(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   const std::vector<Vec3>& normals, uint32_t removed, uint32_t kept,
+                   const Vec3& new_position, bool kept_moves, const PaperWeights& weights) {
+  const double unit = weights.inverse_length_unit;
+  const double l = length(sub(positions[removed], positions[kept])) * unit;
+  const double normal = (1.0 - dot(normals[removed], normals[kept])) * l * l;
+  double equilateral =
+      fanEquilateralChange(topo, positions, removed, kept, new_position, unit);
+  if (kept_moves) {
+    equilateral += fanEquilateralChange(topo, positions, kept, removed, new_position, unit);
+  }
+  return weights.normal * normal + weights.edge_length * l + weights.equilateral * equilateral;
+}
+
+}  // namespace mrsv::simplify

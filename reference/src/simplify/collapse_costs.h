@@ -1,0 +1,63 @@
+// What a collapse costs: the Garland-Heckbert quadric error and the paper's
+// energies (section 6.1, with the section 7.1 weights), and where the kept
+// vertex goes with Placement::kFree.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "simplify/collapse_checks.h"
+#include "simplify/edge_topology.h"
+
+namespace mrsv::simplify {
+
+// A symmetric 4x4 matrix Q, the error of point p being [p 1] Q [p 1]^T.
+// Stored as its upper triangle: a00 a01 a02 a03 a11 a12 a13 a22 a23 a33.
+struct Quadric {
+  std::array<double, 10> q{};
+
+  // weight * (n . p + d)^2, for the plane n . p + d = 0 with |n| = 1.
+  static Quadric plane(const Vec3& n, double d, double weight);
+  void add(const Quadric& o) {
+    for (int i = 0; i < 10; ++i) q[i] += o.q[i];
+  }
+  double evaluate(const Vec3& p) const {
+    const double x = p[0], y = p[1], z = p[2];
+    return x * (q[0] * x + 2.0 * (q[1] * y + q[2] * z + q[3])) +
+           y * (q[4] * y + 2.0 * (q[5] * z + q[6])) + z * (q[7] * z + 2.0 * q[8]) + q[9];
+  }
+  // The point of least error, when the 3x3 part is well conditioned
+  // (det >= kConditionLimit * (trace / 3)^3, i.e. the planes pin all three
+  // directions down); false otherwise (flat or cylindrical neighbourhoods).
+  bool minimizer(Vec3* out) const;
+};
+
+// Area-weighted plane quadrics of every vertex, plus for every boundary edge
+// the plane through it perpendicular to its triangle, weighted by
+// boundary_weight * length^2, which keeps the boundary where it is.
+void buildQuadrics(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   double boundary_weight, std::vector<Quadric>* quadrics);
+
+// Area-weighted unit normal of live vertex v (zero if its fan has no area).
+Vec3 vertexNormal(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t v);
+
+struct PaperWeights {
+  double normal = 50.0;
+  double edge_length = 1.0;
+  double equilateral = 5.0;
+  // Lengths are measured in units of the input's mean edge length, so the
+  // section 7.1 weights mean the same on every mesh whatever its scale.
+  double inverse_length_unit = 1.0;
+};
+
+// The paper's energy of collapsing `removed` into `kept` placed at
+// new_position (spec 6.9, decisions D14, D15):
+//   normal * (1 - n_removed . n_kept) * l^2 + edge_length * l
+//   + equilateral * sum over changed triangles of (E(after) - E(before)),
+// E(T) = sum over the edges of T of (l_e - m_T)^2, m_T the mean edge length.
+double paperEnergy(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   const std::vector<Vec3>& normals, uint32_t removed, uint32_t kept,
+                   const Vec3& new_position, bool kept_moves, const PaperWeights& weights);
+
+}  // namespace mrsv::simplify

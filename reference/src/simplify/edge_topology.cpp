@@ -1,0 +1,234 @@
+#include "simplify/edge_topology.h"
+
+#include <algorithm>
+
+namespace mrsv::simplify {
+
+bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
+  const size_t num_vertices = mesh.positions.size();
+  const size_t num_triangles = mesh.triangles.size();
+  if (num_vertices >= kNone || num_triangles >= kNone / 3) {
+    *error = "mesh too large for 32-bit half-edge indices";
+    return false;
+  }
+  corner_.assign(3 * num_triangles, kNone);
+  opposite_.assign(3 * num_triangles, kNone);
+  outgoing_.assign(num_vertices, kNone);
+  live_triangles_ = num_triangles;
+  for (size_t t = 0; t < num_triangles; ++t) {
+    const auto& tri = mesh.triangles[t];
+    for (int i = 0; i < 3; ++i) {
+      if (tri[i] >= num_vertices) {
+        *error = "triangle " + std::to_string(t) + " has a vertex index out of range";
+        return false;
+      }
+      corner_[3 * t + i] = tri[i];
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
+      *error = "triangle " + std::to_string(t) + " repeats a vertex";
+      return false;
+    }
+  }
+
+  // Half-edges grouped by origin (counting sort), so that pairing a half-edge
+  // with its opposite only scans the target's few outgoing half-edges.
+  std::vector<uint32_t> first(num_vertices + 1, 0);
+  for (uint32_t v : corner_) ++first[v + 1];
+  for (size_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
+  std::vector<uint32_t> by_origin(corner_.size());
+  {
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (uint32_t h = 0; h < corner_.size(); ++h) by_origin[fill[corner_[h]]++] = h;
+  }
+  for (uint32_t h = 0; h < corner_.size(); ++h) {
+    const uint32_t u = corner_[h];
+    const uint32_t w = target(h);
+    for (uint32_t k = first[u]; k < first[u + 1]; ++k) {
+      const uint32_t g = by_origin[k];
+      if (g != h && target(g) == w) {
+        *error = "edge " + std::to_string(u) + "-" + std::to_string(w) +
+                 " is used twice in the same direction (inconsistent orientation or non-manifold edge)";
+        return false;
+      }
+    }
+    for (uint32_t k = first[w]; k < first[w + 1]; ++k) {
+      const uint32_t g = by_origin[k];
+      if (target(g) == u) {
+        opposite_[h] = g;
+        break;
+      }
+    }
+  }
+  for (uint32_t v = 0; v < num_vertices; ++v) {
+    if (first[v] == first[v + 1]) continue;  // unused vertex: stays dead
+    settleOutgoing(v, by_origin[first[v]]);
+    uint32_t fan = 0;
+    forEachOutgoing(v, [&](uint32_t) { ++fan; });
+    if (fan != first[v + 1] - first[v]) {
+      *error = "vertex " + std::to_string(v) + " is non-manifold (more than one fan of triangles)";
+      return false;
+    }
+  }
+  return true;
+}
+
+void EdgeTopology::settleOutgoing(uint32_t v, uint32_t any_outgoing) {
+  // Clockwise (h -> next(opposite(h))) until the boundary or back to the start.
+  uint32_t h = any_outgoing;
+  for (;;) {
+    const uint32_t o = opposite_[h];
+    if (o == kNone) break;
+    h = next(o);
+    if (h == any_outgoing) break;
+  }
+  outgoing_[v] = h;
+}
+
+uint32_t EdgeTopology::findHalfEdge(uint32_t a, uint32_t b) const {
+  uint32_t found = kNone;
+  const uint32_t start = outgoing_[a];
+  uint32_t h = start;
+  do {
+    if (target(h) == b) {
+      found = h;
+      break;
+    }
+    h = opposite_[prev(h)];
+  } while (h != kNone && h != start);
+  return found;
+}
+
+void EdgeTopology::collapse(uint32_t removed, uint32_t kept, uint32_t h) {
+  const uint32_t twin = opposite_[h];
+  const uint32_t h_rk = corner_[h] == removed ? h : twin;  // removed -> kept, or kNone
+  const uint32_t h_kr = corner_[h] == removed ? twin : h;  // kept -> removed, or kNone
+
+  // Every corner of `removed` becomes a corner of `kept` (the dying triangles'
+  // too, which is harmless since they are cleared below).
+  forEachOutgoing(removed, [&](uint32_t g) { corner_[g] = kept; });
+
+  auto glue = [&](uint32_t x, uint32_t y) {
+    if (x != kNone) opposite_[x] = y;
+    if (y != kNone) opposite_[y] = x;
+  };
+  auto kill = [&](uint32_t t) {
+    for (int i = 0; i < 3; ++i) {
+      corner_[3 * t + i] = kNone;
+      opposite_[3 * t + i] = kNone;
+    }
+    --live_triangles_;
+  };
+
+  // A dying triangle with apex x leaves its edges kept-x and x-removed as one
+  // edge kept-x: their outer half-edges become each other's opposite. Keep,
+  // per dying triangle, one live outgoing half-edge of the apex and of `kept`
+  // for afterwards (the link condition guarantees one exists).
+  uint32_t apex[2] = {kNone, kNone};
+  uint32_t apex_out[2] = {kNone, kNone};
+  uint32_t kept_out = kNone;
+  int side = 0;
+  for (uint32_t g : {h_rk, h_kr}) {
+    if (g == kNone) continue;
+    const uint32_t n = next(g);
+    const uint32_t p = prev(g);
+    const uint32_t on = opposite_[n];
+    const uint32_t op = opposite_[p];
+    // For (removed, kept, x): on is x -> kept, op becomes kept -> x. For
+    // (kept, removed, y): on becomes y -> kept, op is kept -> y. Either way on
+    // leaves the apex and op leaves `kept`, and next() of one leaves the other.
+    apex[side] = corner_[p];
+    apex_out[side] = on != kNone ? on : next(op);
+    if (kept_out == kNone) kept_out = op != kNone ? op : next(on);
+    glue(on, op);
+    ++side;
+  }
+  for (uint32_t g : {h_rk, h_kr}) {
+    if (g != kNone) kill(triangleOf(g));
+  }
+  outgoing_[removed] = kNone;
+  for (int s = 0; s < side; ++s) settleOutgoing(apex[s], apex_out[s]);
+  settleOutgoing(kept, kept_out);
+}
+
+bool EdgeTopology::validate(std::string* error) const {
+  const uint32_t nv = numVertices();
+  std::vector<uint32_t> corners_of(nv, 0);
+  for (uint32_t h = 0; h < corner_.size(); ++h) {
+    const uint32_t v = corner_[h];
+    if (v == kNone) {
+      if (corner_[3 * triangleOf(h)] != kNone || opposite_[h] != kNone) {
+        *error = "half-edge " + std::to_string(h) + " of a dead triangle is partly alive";
+        return false;
+      }
+      continue;
+    }
+    if (v >= nv || outgoing_[v] == kNone) {
+      *error = "half-edge " + std::to_string(h) + " starts at a dead vertex";
+      return false;
+    }
+    ++corners_of[v];
+    if (v == target(h)) {
+      *error = "triangle " + std::to_string(triangleOf(h)) + " is degenerate";
+      return false;
+    }
+    const uint32_t o = opposite_[h];
+    if (o != kNone) {
+      if (o >= corner_.size() || opposite_[o] != h || corner_[o] != target(h) ||
+          target(o) != v || triangleOf(o) == triangleOf(h)) {
+        *error = "half-edge " + std::to_string(h) + " is badly paired";
+        return false;
+      }
+    }
+  }
+  uint64_t live = 0;
+  for (uint32_t t = 0; t < numTriangles(); ++t) live += triangleAlive(t);
+  if (live != live_triangles_) {
+    *error = "live triangle count is stale";
+    return false;
+  }
+  std::vector<uint32_t> neighbours;
+  for (uint32_t v = 0; v < nv; ++v) {
+    if (outgoing_[v] == kNone) {
+      if (corners_of[v] != 0) {
+        *error = "dead vertex " + std::to_string(v) + " is still used";
+        return false;
+      }
+      continue;
+    }
+    if (corner_[outgoing_[v]] != v) {
+      *error = "vertex " + std::to_string(v) + " has a foreign outgoing half-edge";
+      return false;
+    }
+    uint32_t fan = 0;
+    bool boundary_seen = false;
+    forEachOutgoing(v, [&](uint32_t h) {
+      ++fan;
+      boundary_seen |= opposite_[h] == kNone;
+    });
+    if (fan != corners_of[v]) {
+      *error = "vertex " + std::to_string(v) + " has more than one fan";
+      return false;
+    }
+    if (boundary_seen && !onBoundary(v)) {
+      *error = "boundary vertex " + std::to_string(v) + " does not start its fan at the boundary";
+      return false;
+    }
+    neighbours.clear();
+    forEachNeighbour(v, [&](uint32_t w) { neighbours.push_back(w); });
+    std::sort(neighbours.begin(), neighbours.end());
+    if (std::adjacent_find(neighbours.begin(), neighbours.end()) != neighbours.end()) {
+      *error = "vertex " + std::to_string(v) + " has a repeated neighbour (duplicate edge)";
+      return false;
+    }
+  }
+  return true;
+}
+
+void EdgeTopology::liveTriangleList(std::vector<std::array<uint32_t, 3>>* out) const {
+  out->clear();
+  for (uint32_t t = 0; t < numTriangles(); ++t) {
+    if (triangleAlive(t)) out->push_back({corner_[3 * t], corner_[3 * t + 1], corner_[3 * t + 2]});
+  }
+}
+
+}  // namespace mrsv::simplify
