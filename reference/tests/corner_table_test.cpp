@@ -33,10 +33,15 @@ void randomSplits(uint32_t vertices, const std::vector<std::array<uint32_t, 3>>&
     table.ring(vs, &ring);
     uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
     uint32_t a = rng() % d, b = rng() % d;
-    if (!splitPositionsValid(ring.boundary, d, a, b)) continue;
-    Done record{vs, {}, table.triangles()};
+    CornerTable::SplitShape shape{true, true};
+    if (ring.boundary) {
+      int kind = rng() % 3;
+      shape = {kind != 1, kind != 2};
+    }
+    if (!splitPositionsValid(ring.boundary, d, a, b, shape)) continue;
+    Done record{vs, shape, table.triangles()};
     const uint32_t t0 = table.triangleCount();
-    record.shape = table.split(vs, ring, a, b);
+    table.split(vs, ring, a, b, shape);
     ASSERT_EQ(table.validate(), "") << "after split " << step;
     ASSERT_EQ(table.triangleCount(), t0 + record.shape.has_g1 + record.shape.has_g2);
     done.push_back(record);

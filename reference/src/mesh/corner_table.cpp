@@ -111,25 +111,27 @@ void CornerTable::ring(uint32_t v, Ring* out) const {
   std::rotate(out->corners.begin(), out->corners.begin() + first, out->corners.end());
 }
 
-bool splitPositionsValid(bool boundary, uint32_t d, uint32_t a, uint32_t b) {
-  if (!boundary) return d >= 3 && a < d && b < d && a != b;
+bool splitPositionsValid(bool boundary, uint32_t d, uint32_t a, uint32_t b,
+                         CornerTable::SplitShape shape) {
+  if (!boundary) return d >= 3 && a < d && b < d && a != b && shape.has_g1 && shape.has_g2;
   // A fan of d neighbours has d - 1 faces; vt takes faces a .. b-1.
   if (d < 2 || a > b || b > d - 1) return false;
-  if (a == 0 && b == d - 1) return false;  // vs would keep no face
-  if (a == b && a != 0 && a != d - 1) return false;  // two faces on the same three vertices
-  return true;
+  if (shape.has_g1 && shape.has_g2) return a < b;  // a = b: two faces on the same three vertices
+  if (shape.has_g2) return a == 0;                 // vt takes the first faces
+  if (shape.has_g1) return b == d - 1;             // vt takes the last faces
+  return false;                                    // vs would keep no face
 }
 
-CornerTable::SplitShape CornerTable::split(uint32_t vs, const Ring& ring, uint32_t a, uint32_t b) {
+void CornerTable::split(uint32_t vs, const Ring& ring, uint32_t a, uint32_t b, SplitShape shape) {
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
   const uint32_t faces = static_cast<uint32_t>(ring.corners.size());  // d, or d - 1 on the boundary
   const uint32_t vt = vertexCount();
   const uint32_t t = triangleCount();
-  SplitShape shape;
-  shape.has_g1 = !(ring.boundary && a == 0);
-  shape.has_g2 = !(ring.boundary && b == d - 1);
   const uint32_t k = ring.boundary ? b - a : (b + d - a) % d;  // faces that move to vt
   auto faceCorner = [&](uint32_t i) { return ring.corners[i % faces]; };
+  // F_{a-1} and F_b exist unless the fan ends there.
+  const bool has_before = !ring.boundary || a > 0;
+  const bool has_after = !ring.boundary || b < d - 1;
 
   for (uint32_t i = 0; i < k; ++i) corner_vertex_[faceCorner(a + i)] = vt;
   const uint32_t g1 = 3 * t, g2 = shape.has_g1 ? 3 * t + 3 : 3 * t;
@@ -142,7 +144,7 @@ CornerTable::SplitShape CornerTable::split(uint32_t vs, const Ring& ring, uint32
     corner_vertex_[g1 + 1] = wa;
     corner_vertex_[g1 + 2] = vt;
     link(g1, k > 0 ? prev(faceCorner(a)) : kNone);
-    link(g1 + 2, next(faceCorner(a + faces - 1)));  // F_{a-1}
+    link(g1 + 2, has_before ? next(faceCorner(a + faces - 1)) : kNone);  // F_{a-1}
     opposite_[g1 + 1] = kNone;
   }
   if (shape.has_g2) {  // G2 = (vs, vt, w_b)
@@ -150,37 +152,32 @@ CornerTable::SplitShape CornerTable::split(uint32_t vs, const Ring& ring, uint32
     corner_vertex_[g2 + 1] = vt;
     corner_vertex_[g2 + 2] = wb;
     link(g2, k > 0 ? next(faceCorner(b + faces - 1)) : kNone);  // F_{b-1}
-    link(g2 + 1, prev(faceCorner(b)));
+    link(g2 + 1, has_after ? prev(faceCorner(b)) : kNone);
     opposite_[g2 + 2] = kNone;
   }
   if (shape.has_g1 && shape.has_g2) link(g1 + 1, g2 + 2);
 
+  // VC: the first corner of each changed boundary fan (spec 6.6.1).
   vertex_corner_.push_back(shape.has_g1 ? g1 + 2 : k > 0 ? faceCorner(a) : g2 + 1);
   if (!ring.boundary) vertex_corner_[vs] = g1;
-  else if (a == 0) vertex_corner_[vs] = g2;
-  // G1 alone with nothing moved (a = b = d - 1) gives w_a a new outgoing
-  // boundary edge w_a -> vt, so G1 starts w_a's fan from now on.
-  if (shape.has_g1 && k == 0) vertex_corner_[wa] = g1 + 1;
-  return shape;
+  else if (a == 0) vertex_corner_[vs] = shape.has_g1 ? g1 : g2;
+  // A new outgoing boundary edge w_a -> vt or w_b -> vs starts that neighbour's fan.
+  if (shape.has_g1 && opposite_[g1] == kNone) vertex_corner_[wa] = g1 + 1;
+  if (shape.has_g2 && opposite_[g2 + 1] == kNone) vertex_corner_[wb] = g2 + 2;
 }
 
 void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
   const uint32_t t = triangleCount();
   const uint32_t added = (shape.has_g1 ? 1 : 0) + (shape.has_g2 ? 1 : 0);
   const uint32_t g1 = 3 * (t - added), g2 = shape.has_g1 ? g1 + 3 : g1;
-  // Corners of vs, w_a and w_b that survive: in F_{a-1} = (vs, w_{a-1}, w_a),
-  // across edge vs-w_a from G1, and in F_b = (vs, w_b, w_{b+1}), across vs-w_b from G2.
-  uint32_t keep_vs = kNone, keep_wa = kNone, keep_wb = kNone;
-  if (shape.has_g2) {
-    uint32_t across = opposite_[g2 + 1];
-    keep_vs = next(across);
-    keep_wb = prev(across);
-  }
-  if (shape.has_g1) {
-    uint32_t across = opposite_[g1 + 2];
-    keep_vs = prev(across);
-    keep_wa = next(across);
-  }
+  // Surviving corners of w_a and w_b: in F_{a-1} or F_a, in F_b or F_{b-1}.
+  uint32_t keep_wa = kNone, keep_wb = kNone, keep_vs = kNone;
+  if (shape.has_g1)
+    keep_wa = opposite_[g1 + 2] != kNone ? next(opposite_[g1 + 2]) : next(next(opposite_[g1]));
+  if (shape.has_g2)
+    keep_wb = opposite_[g2 + 1] != kNone ? prev(opposite_[g2 + 1]) : next(opposite_[g2]);
+  if (shape.has_g1 && opposite_[g1 + 2] != kNone) keep_vs = prev(opposite_[g1 + 2]);
+  if (shape.has_g2 && opposite_[g2 + 1] != kNone) keep_vs = next(opposite_[g2 + 1]);
   // vt's other faces lie between G1 and G2: walk them and give them back to vs.
   if (shape.has_g1) {
     uint32_t c = g1 + 2;
@@ -190,6 +187,7 @@ void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
       c = next(across);
       if (shape.has_g2 && c == g2 + 1) break;
       corner_vertex_[c] = vs;
+      keep_vs = c;
     }
   } else {
     uint32_t c = g2 + 1;
@@ -198,6 +196,7 @@ void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
       if (across == kNone) break;
       c = prev(across);
       corner_vertex_[c] = vs;
+      keep_vs = c;
     }
   }
   if (shape.has_g1) link(opposite_[g1], opposite_[g1 + 2]);
@@ -207,9 +206,9 @@ void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
   vertex_corner_.pop_back();
   resetVertexCorner(vs, keep_vs);
   if (shape.has_g1 && vertex_corner_[corner_vertex_[keep_wa]] >= g1)
-    vertex_corner_[corner_vertex_[keep_wa]] = keep_wa;
+    resetVertexCorner(corner_vertex_[keep_wa], keep_wa);
   if (shape.has_g2 && vertex_corner_[corner_vertex_[keep_wb]] >= g1)
-    vertex_corner_[corner_vertex_[keep_wb]] = keep_wb;
+    resetVertexCorner(corner_vertex_[keep_wb], keep_wb);
 }
 
 std::vector<std::array<uint32_t, 3>> CornerTable::triangles() const {

@@ -51,9 +51,10 @@ class CornerTable {
   };
 
   // spec 6.6.2 vertex split of vs, whose ring is `ring` (as ring() gave it),
-  // at ring positions a and b, which the caller has checked (splitPositionsValid).
+  // at ring positions a and b with the new faces of `shape` (both for an
+  // interior vs), which the caller has checked (splitPositionsValid).
   // Adds vertex vertexCount() and one or two faces.
-  SplitShape split(uint32_t vs, const Ring& ring, uint32_t a, uint32_t b);
+  void split(uint32_t vs, const Ring& ring, uint32_t a, uint32_t b, SplitShape shape);
 
   // Undoes the last split (whose new vertex is the last vertex).
   void collapseLast(uint32_t vs, SplitShape shape);
@@ -79,6 +80,7 @@ class CornerTable {
 };
 
 // spec 6.6.2: are ring positions a and b a valid split of a ring of this shape?
-bool splitPositionsValid(bool boundary, uint32_t neighbours, uint32_t a, uint32_t b);
+bool splitPositionsValid(bool boundary, uint32_t neighbours, uint32_t a, uint32_t b,
+                         CornerTable::SplitShape shape);
 
 }  // namespace mrsv

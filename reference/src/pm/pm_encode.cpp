@@ -227,6 +227,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
       };
       record.a = where(c.left, 0);
       record.b = where(c.right, d - 1);
+      record.shape = {c.left != kNone, c.right != kNone};
       if (record.a == kNone || record.b == kNone || (c.left == kNone && !ring.boundary) ||
           (c.right == kNone && !ring.boundary)) {
         *error = "collapse " + std::to_string(c.removed) + " -> " + std::to_string(c.kept) +

@@ -110,34 +110,35 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, u
     if (k_decoded < 1 || k_decoded > int64_t{d} - 1)
       return "ring turn " + std::to_string(k_decoded) + " outside 1 to " + std::to_string(d - 1);
     r->b = static_cast<uint32_t>((r->a + k_decoded) % d);
+    r->shape = {true, true};
   } else {
-    // 0: vt inside the fan (both new faces); 1: vt takes the first faces (a = 0);
-    // 2: vt takes the last faces (b = d - 1).
-    int kind = Coder::kEncoding ? (r->a == 0 ? 1 : r->b == d - 1 ? 2 : 0) : 0;
-    int on_edge = coder.bit(&ctx.boundary_kind[0], kind != 0);
-    if (on_edge) kind = 1 + coder.bit(&ctx.boundary_kind[1], kind == 2);
-    if (kind == 0) {
-      if (d < 4) return "a split inside a fan of fewer than 4 neighbours";
-      uint32_t a1 = codeTruncated(coder, d - 3, r->a - 1);
-      r->a = a1 + 1;
+    // Both new faces (vt inside the fan), or only G2 (vt takes the first
+    // faces) or only G1 (vt takes the last faces): spec 6.7.2.
+    int on_edge = coder.bit(&ctx.boundary_kind[0], !(r->shape.has_g1 && r->shape.has_g2));
+    if (!on_edge) {
+      r->shape = {true, true};
+      r->a = codeTruncated(coder, d - 1, r->a);
       uint32_t extra = Coder::kEncoding ? r->b - r->a - 1 : 0;
       if (!codeUnsigned(coder, ctx.fan_interior, &extra)) return "the fan position is too long";
-      if (extra > d - 3 - r->a) return "split position b beyond the fan";
+      if (extra > d - 2 - r->a) return "split position b beyond the fan";
       r->b = r->a + 1 + extra;
     } else {
-      uint32_t faces = Coder::kEncoding ? (kind == 1 ? r->b : d - 1 - r->a) : 0;
+      int last = coder.bit(&ctx.boundary_kind[1], !r->shape.has_g2);
+      uint32_t faces = Coder::kEncoding ? (last ? d - 1 - r->a : r->b) : 0;
       if (!codeUnsigned(coder, ctx.fan_faces, &faces)) return "the fan position is too long";
-      if (faces > d - 2) return "the new vertex would take every face of the fan";
-      if (kind == 1) {
+      if (faces > d - 1) return "the new vertex would take more faces than the fan has";
+      if (!last) {
+        r->shape = {false, true};
         r->a = 0;
         r->b = faces;
       } else {
+        r->shape = {true, false};
         r->a = d - 1 - faces;
         r->b = d - 1;
       }
     }
   }
-  if (!splitPositionsValid(ring.boundary, d, r->a, r->b))
+  if (!splitPositionsValid(ring.boundary, d, r->a, r->b, r->shape))
     return "ring positions " + std::to_string(r->a) + ", " + std::to_string(r->b) +
            " are not a valid split";
   // spec 6.7.3 geometry.

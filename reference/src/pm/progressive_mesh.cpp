@@ -9,7 +9,7 @@ void ProgressiveMesh::Impl::applySplit(const CornerTable::Ring& vs_ring) {
   SplitRecord& r = splits[level];
   if (header.placement == kPlacementFree)
     for (int k = 0; k < 3; ++k) positions[r.vs][k] += r.vs_move[k];
-  r.shape = table.split(r.vs, vs_ring, r.a, r.b);
+  table.split(r.vs, vs_ring, r.a, r.b, r.shape);
   positions.push_back(r.vt_position);
   if (header.scalar_bits) scalars.push_back(r.vt_scalar);
   ++level;
