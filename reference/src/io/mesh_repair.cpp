@@ -258,7 +258,7 @@ bool repairMesh(TriangleMesh* mesh, const MeshRepairOptions& options, MeshRepair
       bool orientable = true;
       for (size_t i = 0; i < members.size(); ++i) {
         uint32_t t = members[i];
-        for (int k = 0; k < 3; ++k) {
+        for (uint32_t k = 0; k < 3; ++k) {
           uint32_t o = neighbour[3 * t + k];
           if (o == kNone) continue;
           uint8_t wanted = static_cast<uint8_t>(flip[t] ^ (same_way[3 * t + k] ? 1 : 0));
@@ -299,7 +299,7 @@ bool repairMesh(TriangleMesh* mesh, const MeshRepairOptions& options, MeshRepair
     std::vector<uint32_t> fan_vertex(triangles.size() * 3, kNone);
     std::vector<uint8_t> claimed(origin.size(), 0);  // 1: taken by a fan, 2: also split
     for (uint32_t t = 0; t < triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
+      for (uint32_t k = 0; k < 3; ++k) {
         uint32_t fan = corners.find(3 * t + k);
         uint32_t& v = triangles[t][k];
         if (fan_vertex[fan] == kNone) {
