@@ -79,6 +79,39 @@ TEST(MeshRepair, FlippedTriangleInAnOrientableComponentIsFixed) {
   }
 }
 
+TEST(MeshRepair, InsideOutClosedComponentsAreCountedAndTurnedOnRequest) {
+  TriangleMesh mesh;
+  // The unit corner tetrahedron, far from the origin; kTetrahedron faces outwards on it.
+  mesh.positions = {{1e6, 1e6, 1e6}, {1e6 + 1, 1e6, 1e6}, {1e6, 1e6 + 1, 1e6}, {1e6, 1e6, 1e6 + 1}};
+  mesh.triangles = kTetrahedron;
+  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  // A second, open component facing either way is not counted.
+  mesh.positions.push_back({0, 0, 0});
+  mesh.positions.push_back({0, 1, 0});
+  mesh.positions.push_back({1, 0, 0});
+  mesh.triangles.push_back({4, 5, 6});
+  const TriangleMesh inside_out = mesh;
+  MeshRepairReport report;
+  std::string error;
+  ASSERT_TRUE(repair(&mesh, &report, &error)) << error;
+  EXPECT_EQ(report.inward_closed_components, 1u);
+  EXPECT_FALSE(report.inward_closed_turned);
+  EXPECT_EQ(report.flipped_triangles, 0u);
+  EXPECT_EQ(mesh.triangles, inside_out.triangles);
+  EXPECT_NE(describe(report).find("1 inside-out closed components (left as they are)"),
+            std::string::npos);
+  MeshRepairOptions outward;
+  outward.orient_closed_outward = true;
+  ASSERT_TRUE(repair(&mesh, &report, &error, outward)) << error;
+  EXPECT_TRUE(report.inward_closed_turned);
+  EXPECT_EQ(report.flipped_triangles, 4u);
+  EXPECT_EQ(Triangles(mesh.triangles.begin(), mesh.triangles.begin() + 4), kTetrahedron);
+  EXPECT_EQ(mesh.triangles.back(), (std::array<uint32_t, 3>{4, 5, 6}));
+  ASSERT_TRUE(repair(&mesh, &report, &error, outward)) << error;
+  EXPECT_EQ(report.inward_closed_components, 0u);
+  EXPECT_EQ(report.flipped_triangles, 0u);
+}
+
 TEST(MeshRepair, OrientationTieKeepsTheFirstTriangle) {
   // Two triangles sharing edge (1, 2), traversed the same way by both.
   TriangleMesh mesh = meshOf(4, {{0, 1, 2}, {3, 1, 2}});

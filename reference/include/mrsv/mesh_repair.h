@@ -24,7 +24,11 @@
 //     class are flipped (b and c swapped; on a tie the component's first
 //     triangle keeps its orientation). A component that cannot be oriented
 //     (a Moebius band, a Klein bottle) is an error, unless
-//     `allow_non_orientable` is set, which leaves it as it is.
+//     `allow_non_orientable` is set, which leaves it as it is. A closed
+//     component (no boundary edge) whose triangles then face inwards
+//     (negative enclosed volume) is counted, and turned inside out as a
+//     whole if `orient_closed_outward` is set. That is off by default: the
+//     inner shell of a hollow solid rightly faces inwards.
 //  5. Each non-manifold vertex is split into one vertex per fan, all at the
 //     same position (and with the same scalar). The fan holding the vertex's
 //     first corner in triangle order keeps the index; the others get new
@@ -46,6 +50,7 @@ namespace mrsv {
 struct MeshRepairOptions {
   bool detach_overfull_edges = false;
   bool allow_non_orientable = false;
+  bool orient_closed_outward = false;
 };
 
 // What repairMesh() found and did; the tools print it with describe().
@@ -57,9 +62,11 @@ struct MeshRepairReport {
   size_t overfull_edges = 0;           // edges with more than two triangles (rule 3)
   size_t detached_triangles = 0;       // rule 3 with detach_overfull_edges
   size_t inconsistent_edges = 0;       // shared edges traversed the same way before rule 4
-  size_t flipped_triangles = 0;        // rule 4
+  size_t flipped_triangles = 0;        // rule 4, in total
   size_t components = 0;               // connected across manifold edges
   size_t non_orientable_components = 0;
+  size_t inward_closed_components = 0;  // closed, facing inwards after rule 4
+  bool inward_closed_turned = false;    // ... and turned outward (orient_closed_outward)
   size_t nonmanifold_vertices = 0;     // vertices with more than one fan (rule 5)
   size_t vertices_added_by_split = 0;  // rule 5
   size_t unused_vertices = 0;          // dropped (rule 6)

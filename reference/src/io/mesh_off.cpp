@@ -77,7 +77,7 @@ bool readOff(const std::string& name, const uint8_t* data, size_t size, Triangle
       return fail("vertex " + std::to_string(v) + ": file ends after " + std::to_string(v) +
                   " of " + std::to_string(vertex_count) + " vertices");
     std::array<double, 3> p;
-    for (int c = 0; c < 3; ++c) {
+    for (size_t c = 0; c < 3; ++c) {
       std::string_view token = scanner.lineToken('#');
       if (token.empty())
         return fail("vertex " + std::to_string(v) + ": fewer than 3 coordinates");
@@ -136,7 +136,7 @@ void encodeOff(const TriangleMesh& mesh, std::vector<uint8_t>* out) {
   appendUnsigned(mesh.triangles.size(), &text);
   text += " 0\n";
   for (const auto& p : mesh.positions) {
-    for (int c = 0; c < 3; ++c) {
+    for (size_t c = 0; c < 3; ++c) {
       if (c) text += ' ';
       appendShortestDouble(p[c], &text);
     }

@@ -88,6 +88,26 @@ DisjointSets fanClasses(const std::vector<Triangle>& triangles, const std::vecto
   return corners;
 }
 
+// Six times the volume a closed component encloses, positive when its
+// triangles face outwards. Measured from one of its own vertices, which keeps
+// the terms small for a mesh far from the origin (the sum does not depend on
+// the point for a closed surface).
+double signedVolume(const std::vector<std::array<double, 3>>& positions,
+                    const std::vector<uint32_t>& origin, const std::vector<Triangle>& triangles,
+                    const std::vector<uint32_t>& members) {
+  const std::array<double, 3>& o = positions[origin[triangles[members[0]][0]]];
+  double sum = 0;
+  for (uint32_t t : members) {
+    std::array<double, 3> p[3];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) p[k][c] = positions[origin[triangles[t][k]]][c] - o[c];
+    sum += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+           p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+           p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+  }
+  return sum;
+}
+
 }  // namespace
 
 size_t dropUnusedVertices(TriangleMesh* mesh, std::vector<uint32_t>* vertex_origin) {
@@ -130,6 +150,8 @@ std::string describe(const MeshRepairReport& r) {
   item(r.inconsistent_edges, "inconsistently oriented edges");
   item(r.flipped_triangles, "triangles flipped");
   item(r.non_orientable_components, "non-orientable components");
+  item(r.inward_closed_components, r.inward_closed_turned ? "inside-out closed components turned outward"
+                                                          : "inside-out closed components (left as they are)");
   item(r.nonmanifold_vertices, "non-manifold vertices");
   item(r.vertices_added_by_split, "vertices added by splitting them");
   s += "; " + std::to_string(r.boundary_edges) + " boundary edges, " +
@@ -256,11 +278,15 @@ bool repairMesh(TriangleMesh* mesh, const MeshRepairOptions& options, MeshRepair
       members.push_back(seed);
       flip[seed] = 0;
       bool orientable = true;
+      bool closed = true;
       for (size_t i = 0; i < members.size(); ++i) {
         uint32_t t = members[i];
-        for (int k = 0; k < 3; ++k) {
+        for (uint32_t k = 0; k < 3; ++k) {
           uint32_t o = neighbour[3 * t + k];
-          if (o == kNone) continue;
+          if (o == kNone) {
+            closed = false;
+            continue;
+          }
           uint8_t wanted = static_cast<uint8_t>(flip[t] ^ (same_way[3 * t + k] ? 1 : 0));
           if (flip[o] == 2) {
             flip[o] = wanted;
@@ -282,12 +308,18 @@ bool repairMesh(TriangleMesh* mesh, const MeshRepairOptions& options, MeshRepair
       }
       size_t reversed = 0;
       for (uint32_t t : members) reversed += flip[t];
-      const uint8_t flip_when = reversed * 2 > members.size() ? 0 : 1;
+      uint8_t flip_when = reversed * 2 > members.size() ? 0 : 1;
       for (uint32_t t : members)
-        if (flip[t] == flip_when) {
-          std::swap(triangles[t][1], triangles[t][2]);
-          ++r.flipped_triangles;
+        if (flip[t] == flip_when) std::swap(triangles[t][1], triangles[t][2]);
+      if (closed && signedVolume(mesh->positions, origin, triangles, members) < 0) {
+        ++r.inward_closed_components;
+        if (options.orient_closed_outward) {
+          r.inward_closed_turned = true;
+          for (uint32_t t : members) std::swap(triangles[t][1], triangles[t][2]);
+          flip_when ^= 1;
         }
+      }
+      for (uint32_t t : members) r.flipped_triangles += flip[t] == flip_when;
     }
   }
 
@@ -299,7 +331,7 @@ bool repairMesh(TriangleMesh* mesh, const MeshRepairOptions& options, MeshRepair
     std::vector<uint32_t> fan_vertex(triangles.size() * 3, kNone);
     std::vector<uint8_t> claimed(origin.size(), 0);  // 1: taken by a fan, 2: also split
     for (uint32_t t = 0; t < triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
+      for (uint32_t k = 0; k < 3; ++k) {
         uint32_t fan = corners.find(3 * t + k);
         uint32_t& v = triangles[t][k];
         if (fan_vertex[fan] == kNone) {
