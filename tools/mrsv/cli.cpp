@@ -102,4 +102,43 @@ void Progress::update(double fraction) {
   std::fflush(stderr);
 }
 
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+bool parseMetaOptions(const Args& args, Metadata* metadata, std::string* error) {
+  if (!args.has("meta")) return true;
+  for (const std::string& entry : args.values("meta")) {
+    size_t eq = entry.find('=');
+    if (eq == std::string::npos) {
+      *error = "--meta '" + entry + "' is not KEY=VALUE";
+      return false;
+    }
+    std::string key = entry.substr(0, eq), value = entry.substr(eq + 1);
+    if (std::string problem = metadataEntryProblem(key, value); !problem.empty()) {
+      *error = "--meta: " + problem;
+      return false;
+    }
+    if (metadata->find(key)) {
+      *error = "--meta: key '" + key + "' given twice";
+      return false;
+    }
+    metadata->entries.emplace_back(key, value);
+  }
+  return true;
+}
+
 }  // namespace mrsv::cli

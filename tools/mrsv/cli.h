@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mrsv/metadata.h"
 #include "mrsv/status.h"
 
 namespace mrsv::cli {
@@ -46,6 +47,13 @@ int fail(const char* command, const std::string& message, int exit_code);
 
 // Parses a whole non-negative decimal number; false when not one.
 bool parseUint64(const std::string& text, uint64_t* out);
+
+// `s` as a JSON string literal, quotes included.
+std::string jsonString(const std::string& s);
+
+// The repeatable --meta KEY=VALUE options into `metadata` (spec 2.6 rules);
+// false with one line in `error` on a malformed or repeated entry.
+bool parseMetaOptions(const Args& args, Metadata* metadata, std::string* error);
 
 // Progress on stderr, only when it is a terminal and not --quiet.
 class Progress {

@@ -54,23 +54,6 @@ const char kHelp[] =
 // More samples than this would take tens of gigabytes.
 constexpr uint64_t kMaxSamples = 1000000000;
 
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
 struct Input {
   std::string file;
   TriangleMesh mesh;

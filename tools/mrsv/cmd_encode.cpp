@@ -275,15 +275,7 @@ int runEncode(int argc, char** argv) {
                              args.has("bits-per-sample") || args.has("psnr") || args.has("step")))
     return fail(cmd, "--coding stored takes no rate, quality or wavelet option", kExitUsage);
   Metadata metadata;
-  for (const std::string& entry : args.values("meta")) {
-    size_t eq = entry.find('=');
-    if (eq == std::string::npos) return fail(cmd, "--meta '" + entry + "' is not KEY=VALUE", kExitUsage);
-    std::string key = entry.substr(0, eq), value = entry.substr(eq + 1);
-    if (std::string problem = metadataEntryProblem(key, value); !problem.empty())
-      return fail(cmd, "--meta: " + problem, kExitUsage);
-    if (metadata.find(key)) return fail(cmd, "--meta: key '" + key + "' given twice", kExitUsage);
-    metadata.entries.emplace_back(key, value);
-  }
+  if (!parseMetaOptions(args, &metadata, &error)) return fail(cmd, error, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
 
   Progress progress("encode", args.flag("quiet"));

@@ -106,23 +106,6 @@ std::string summary(const DecodedGrid& grid) {
   return s;
 }
 
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
 void printJson(const std::string& file, size_t file_size, const DecodedGrid& grid, const Error& e) {
   const Container& c = grid.container;
   std::printf("{\n  \"file\": %s,\n  \"bytes\": %zu,\n", jsonString(file).c_str(), file_size);

@@ -123,16 +123,7 @@ int runMeshEncode(int argc, char** argv) {
        simplify.time_budget_seconds <= 0))
     return fail(cmd, "--time-budget must be a positive number of seconds", kExitUsage);
   Metadata metadata;
-  if (args.has("meta"))
-    for (const std::string& entry : args.values("meta")) {
-      size_t eq = entry.find('=');
-      if (eq == std::string::npos) return fail(cmd, "--meta '" + entry + "' is not KEY=VALUE", kExitUsage);
-      std::string key = entry.substr(0, eq), value = entry.substr(eq + 1);
-      if (std::string problem = metadataEntryProblem(key, value); !problem.empty())
-        return fail(cmd, "--meta: " + problem, kExitUsage);
-      if (metadata.find(key)) return fail(cmd, "--meta: key '" + key + "' given twice", kExitUsage);
-      metadata.entries.emplace_back(key, value);
-    }
+  if (!parseMetaOptions(args, &metadata, &error)) return fail(cmd, error, kExitUsage);
 
   TriangleMesh mesh;
   if (!readMeshFile(in, args.has("scalar") ? args.value("scalar") : "", &mesh, &error))
@@ -206,16 +197,7 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
       // A fraction of the full mesh's triangles (of the stream's finest level here).
       target = static_cast<uint64_t>(std::floor(f * pm.triangleCountAt(finest) + 1e-9));
     }
-    // The finest level with at most `target` triangles (counts grow with the level).
-    level = 0;
-    uint64_t t = pm.triangleCountAt(0);
-    for (uint32_t l = 0; l < finest; ++l) {
-      uint32_t next = pm.triangleCountAt(l + 1);
-      (void)t;
-      if (next > target) break;
-      level = l + 1;
-      t = next;
-    }
+    level = pm.finestLevelWithin(target);
   }
   pm.setLevel(level);
   std::vector<uint8_t> output;

@@ -55,6 +55,10 @@ class ProgressiveMesh {
   uint32_t vertexCountAt(uint32_t level) const;
   uint32_t triangleCountAt(uint32_t level) const;
 
+  // The finest level with at most `max_triangles` triangles (0 when even the
+  // base mesh has more): one pass over the splits.
+  uint32_t finestLevelWithin(uint64_t max_triangles) const;
+
   // Moves to `level` (clamped to splitsDecoded()): vertex splits to go finer,
   // edge collapses to go coarser, each O(degree).
   void setLevel(uint32_t level);

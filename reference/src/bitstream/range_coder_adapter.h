@@ -1,6 +1,8 @@
-// The range encoder in the shape codeArray() expects (encoder side only).
+// The range coder in the shape the coding templates expect (codeArray(),
+// the PM records): one template body serves both directions.
 #pragma once
 
+#include "bitstream/range_decoder.h"
 #include "bitstream/range_encoder.h"
 
 namespace mrsv {
@@ -16,6 +18,16 @@ struct EncodingCoder {
     rc->direct(value, n);
     return value;
   }
+  bool overrun() const { return false; }
+};
+
+struct DecodingCoder {
+  static constexpr bool kEncoding = false;
+  RangeDecoder* rc;
+  int bit(BitModel* m, int) { return rc->bit(m); }
+  uint32_t direct(uint32_t, int n) { return rc->direct(n); }
+  // Bytes were wanted past the payload: everything decoded since is garbage.
+  bool overrun() const { return rc->overrun() != 0; }
 };
 
 }  // namespace mrsv

@@ -269,11 +269,4 @@ bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& 
 }
 
 // Adapters giving both coders the same shape for codeArray.
-struct DecodingCoder {
-  static constexpr bool kEncoding = false;
-  RangeDecoder* rc;
-  int bit(BitModel* m, int) { return rc->bit(m); }
-  uint32_t direct(uint32_t, int n) { return rc->direct(n); }
-};
-
 }  // namespace mrsv

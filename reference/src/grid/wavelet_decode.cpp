@@ -9,6 +9,7 @@
 #include <memory>
 #include <new>
 
+#include "bitstream/range_coder_adapter.h"
 #include "bitstream/range_decoder.h"
 #include "common/byte_reader.h"
 #include "grid/baseline_coding.h"

@@ -5,8 +5,7 @@
 
 #include <cstdint>
 
-#include "bitstream/range_decoder.h"
-#include "bitstream/range_encoder.h"
+#include "bitstream/range_coder_adapter.h"
 
 namespace mrsv::pm {
 
@@ -75,28 +74,6 @@ uint32_t codeTruncated(Coder& coder, uint32_t n, uint32_t value) {
   x = (x << 1) | coder.direct(0, 1);
   return x - shorter;
 }
-
-// The coders in the shape the record templates expect.
-struct PmDecoder {
-  static constexpr bool kEncoding = false;
-  RangeDecoder* rc;
-  int bit(BitModel* m, int) { return rc->bit(m); }
-  uint32_t direct(uint32_t, int n) { return rc->direct(n); }
-  bool overrun() const { return rc->overrun() != 0; }
-};
-struct PmEncoder {
-  static constexpr bool kEncoding = true;
-  RangeEncoder* rc;
-  int bit(BitModel* m, int b) {
-    rc->bit(m, b);
-    return b;
-  }
-  uint32_t direct(uint32_t value, int n) {
-    rc->direct(value, n);
-    return value;
-  }
-  bool overrun() const { return false; }
-};
 
 // spec 6.5.3 the bit models of a PM stream. PBAS uses `base_*`; the split
 // models live across all PSPL chunks of the stream.

@@ -33,7 +33,7 @@ Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, cons
   return {};
 }
 
-Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
+Error decodeChunks(DecodedMesh* out) {
   const Container& c = out->container;
   ProgressiveMesh::Impl& s = out->mesh.state();
   s.header = out->header;
@@ -50,7 +50,7 @@ Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
       RangeDecoder rc(chunk.payload, chunk.chunk_length);
       if (!rc.validStart())
         return Error{Status::kBadEntropyPayload, at, "PBAS", "coded data must start with a 0 byte"};
-      pm::PmDecoder coder{&rc};
+      DecodingCoder coder{&rc};
       std::vector<std::array<uint32_t, 3>> triangles;
       std::string problem = pm::codeBaseMesh(coder, ctx, s, &triangles);
       if (!problem.empty()) {
@@ -79,7 +79,7 @@ Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
       RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
       if (!rc.validStart())
         return Error{Status::kBadEntropyPayload, at + 4, "PSPL", "coded data must start with a 0 byte"};
-      pm::PmDecoder coder{&rc};
+      DecodingCoder coder{&rc};
       const uint32_t batch_start = s.table.vertexCount();
       int64_t prev_vs = -1;
       for (uint32_t k = 0; k < split_count; ++k) {
@@ -102,7 +102,6 @@ Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
     }
     // meta was read by the caller; unknown ancillary chunks are skipped (spec 2.4).
   }
-  (void)options;
   if (c.complete) {
     if (!seen_base)
       return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PM stream needs PBAS before MEND"};
@@ -139,7 +138,7 @@ Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOption
     return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR",
                  "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
   try {
-    return decodeChunks(options, out);
+    return decodeChunks(out);
   } catch (const std::bad_alloc&) {
     return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR", "out of memory"};
   }

@@ -186,7 +186,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
   {
     std::vector<uint8_t> payload;
     RangeEncoder rc(&payload);
-    pm::PmEncoder coder{&rc};
+    EncodingCoder coder{&rc};
     std::vector<std::array<uint32_t, 3>> tris = base_faces;
     std::string problem = pm::codeBaseMesh(coder, ctx, s, &tris);
     if (!problem.empty()) {
@@ -211,7 +211,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
     std::vector<uint8_t> payload;
     ByteWriter(&payload).u32(static_cast<uint32_t>(batch.size()));
     RangeEncoder rc(&payload);
-    pm::PmEncoder coder{&rc};
+    EncodingCoder coder{&rc};
     const uint32_t batch_start = s.table.vertexCount();
     int64_t prev_vs = -1;
     CornerTable::Ring ring;

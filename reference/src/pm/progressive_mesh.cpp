@@ -50,6 +50,17 @@ uint32_t ProgressiveMesh::triangleCountAt(uint32_t level) const {
   return t;
 }
 
+uint32_t ProgressiveMesh::finestLevelWithin(uint64_t max_triangles) const {
+  uint64_t t = triangleCountAt(0);
+  uint32_t level = 0;
+  for (const SplitRecord& r : impl_->splits) {
+    t += r.shape.has_g1 + r.shape.has_g2;
+    if (t > max_triangles) break;
+    ++level;
+  }
+  return level;
+}
+
 void ProgressiveMesh::setLevel(uint32_t target) {
   if (target > impl_->splits.size()) target = static_cast<uint32_t>(impl_->splits.size());
   while (impl_->level < target) impl_->refineOne();
