@@ -461,7 +461,7 @@ int main(int argc, char** argv) {
       configs.push_back(c);
     }
     if (sweep) {
-      for (double ratio : {1.0, 1.5, 2.0, 4.0, 8.0, 16.0, 1e9}) {
+      for (double ratio : {1.5, 2.0, 3.0, 4.0, 8.0, 16.0, 1e9}) {
         for (double fraction : {1.0}) {
           Config c{"", {}};
           c.options.batch_cost_ratio = ratio;

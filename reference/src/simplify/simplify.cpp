@@ -208,8 +208,7 @@ bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* positi
                                len2) {
       *position = x;
     } else {
-      const double ek = q.evaluate(pk), er = q.evaluate(pr), em = q.evaluate(mid);
-      *position = ek <= er && ek <= em ? pk : (er <= em ? pr : mid);
+      *position = q.segmentMinimizer(pk, pr);
     }
   }
   return *position != pk;
