@@ -28,6 +28,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from make_vectors import CODED_PREFIX, canonical, chunk, file_header, write_manifest  # noqa: E402
+from mesh_vectors import build_mesh  # noqa: E402
 
 CROPS = os.path.join(HERE, "..", "demo", "data")
 
@@ -81,6 +82,11 @@ class Generator:
         if nodata is not None:
             cmd += ["--nodata", str(nodata)]
         subprocess.run(cmd + options + [src, out], check=True)
+        return open(out, "rb").read()
+
+    def encode_file(self, path, options):
+        out = os.path.join(self.tmp, "out.mrsv")
+        subprocess.run([self.mrsv, "encode", "--quiet"] + options + [path, out], check=True)
         return open(out, "rb").read()
 
     def reference_output(self, data):
@@ -283,6 +289,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="mrsv-coded-") as tmp:
         g = Generator(os.path.abspath(args.mrsv), tmp)
         build(g)
+        build_mesh(g, parse_chunks, frame, offset_of, find)
     names = [e["file"] for e in g.entries]
     assert len(names) == len(set(names)), "duplicate vector names"
     for sub in ("valid", "invalid"):

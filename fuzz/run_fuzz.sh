@@ -8,7 +8,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=$1 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode)
 findings=$here/findings
 mkdir -p "$findings"
 scratch=$(mktemp -d)

@@ -86,5 +86,18 @@ cp "$crop" "$work/in.raw"
 expect 2 "$mrsv" encode --dims 128,128 --type int16 "$work/in.raw" "$work/./in.raw"
 if cmp -s "$crop" "$work/in.raw"; then ok; else bad "encode changed its input"; fi
 
+# Progressive meshes (spec 6): encode, check, decode at levels, compare.
+cow="$(dirname "$0")/../../../shared/data/surface/cow_viewpoint_2903v_5804tri.obj"
+expect 0 "$mrsv" encode --quiet --bits 14 "$cow" "$work/cow.mrsv"
+expect 0 "$mrsv" check "$work/cow.mrsv"; stdout_has "progressive mesh, 2904 vertices"
+expect 0 "$mrsv" decode --quiet --faces 580 "$work/cow.mrsv" "$work/cow580.off"
+if [ "$(sed -n 2p "$work/cow580.off" | cut -d' ' -f2)" -le 580 ]; then ok; else bad "--faces 580 gave more faces"; fi
+expect 0 "$mrsv" decode --quiet --fraction 1 "$work/cow.mrsv" "$work/cow.ply"
+expect 0 "$mrsv" compare --json "$cow" "$work/cow.ply"; stdout_has "hausdorff"
+expect 2 "$mrsv" decode --faces 5 --vertices 5 "$work/cow.mrsv" "$work/x.obj"; one_line_stderr
+head -c 300 "$work/cow.mrsv" >"$work/cow_cut.mrsv"
+expect 1 "$mrsv" check "$work/cow_cut.mrsv"; one_line_stderr
+expect 0 "$mrsv" encode --help "$work/x.obj"; stdout_has "progressive mesh"
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -4,10 +4,24 @@
 #include <gtest/gtest.h>
 
 #include "mrsv/grid.h"
+#include "mrsv/progressive_mesh.h"
 #include "test_support.h"
 
 namespace mrsv {
 namespace {
+
+// Grids and PM streams alike: the stream's first chunk says which it is.
+struct AnyDecoded {
+  bool pm = false;
+  DecodedGrid grid;
+  DecodedMesh mesh;
+  const Container& container() const { return pm ? mesh.container : grid.container; }
+};
+Error decodeAny(const uint8_t* data, size_t size, const DecodeOptions& options, AnyDecoded* out) {
+  out->pm = isProgressiveMeshStream(data, size);
+  if (out->pm) return decodeProgressiveMesh(data, size, options, &out->mesh);
+  return decodeGrid(data, size, options, &out->grid);
+}
 
 using test::manifestVectors;
 using test::readFileOrFail;
@@ -18,8 +32,8 @@ TEST(ConformanceVectors, ManifestListsVectors) { EXPECT_GE(manifestVectors().siz
 TEST(ConformanceVectors, EachDecodesOrFailsAsTheManifestSays) {
   for (const auto& v : manifestVectors()) {
     std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
-    DecodedGrid grid;
-    Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    AnyDecoded grid;
+    Error e = decodeAny(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
     if (v.valid) {
       EXPECT_TRUE(e.ok()) << v.file << ": " << e.describe();
     } else {
@@ -36,8 +50,8 @@ TEST(ConformanceVectors, EveryPrefixOfAValidVectorIsHandled) {
     for (size_t n = 0; n < bytes.size(); ++n) {
       // A fresh exact-size allocation per prefix: over-reads hit the redzone.
       std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + static_cast<long>(n));
-      DecodedGrid grid;
-      Error strict = decodeGrid(prefix.data(), prefix.size(), DecodeOptions{}, &grid);
+      AnyDecoded grid;
+      Error strict = decodeAny(prefix.data(), prefix.size(), DecodeOptions{}, &grid);
       if (!strict.ok()) {
         EXPECT_TRUE(strict.status == Status::kTruncatedFileHeader ||
                     strict.status == Status::kTruncatedChunkHeader ||
@@ -47,7 +61,7 @@ TEST(ConformanceVectors, EveryPrefixOfAValidVectorIsHandled) {
       if (n >= kFileHeaderSize) {
         DecodeOptions lenient;
         lenient.container.allow_partial_tail = true;
-        EXPECT_TRUE(decodeGrid(prefix.data(), prefix.size(), lenient, &grid).ok())
+        EXPECT_TRUE(decodeAny(prefix.data(), prefix.size(), lenient, &grid).ok())
             << v.file << " prefix " << n;
       }
     }
@@ -58,11 +72,11 @@ TEST(ConformanceVectors, OneTrailingByteIsRejectedAfterMend) {
   for (const auto& v : manifestVectors()) {
     if (!v.valid) continue;
     std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
-    DecodedGrid grid;
-    ASSERT_TRUE(decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid).ok());
-    if (!grid.container.complete) continue;
+    AnyDecoded grid;
+    ASSERT_TRUE(decodeAny(bytes.data(), bytes.size(), DecodeOptions{}, &grid).ok());
+    if (!grid.container().complete) continue;
     bytes.push_back(0);
-    Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    Error e = decodeAny(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
     EXPECT_EQ(e.status, Status::kTrailingBytes) << v.file;
     EXPECT_EQ(e.offset, bytes.size() - 1) << v.file;
   }

@@ -6,6 +6,7 @@
 #include "mrsv/file_io.h"
 #include "mrsv/grid_formats.h"
 #include "mrsv/grid.h"
+#include "mrsv/progressive_mesh.h"
 #include "mrsv/raw_grid.h"
 
 namespace mrsv::cli {
@@ -13,6 +14,13 @@ namespace {
 
 const char kHelp[] =
     "Usage: mrsv decode [options] IN.mrsv OUT\n"
+    "\n"
+    "A PM stream (spec 6) decodes to a mesh: OUT.obj, OUT.ply (binary) or OUT.off, at the\n"
+    "level chosen by one of:\n"
+    "  --faces N             the finest level with at most N triangles\n"
+    "  --vertices N          the level with N vertices (base..full)\n"
+    "  --fraction F          the finest level with at most F times the full triangle count\n"
+    "(default: every split decoded; --canonical writes spec 6.8's canonical mesh output).\n"
     "\n"
     "Decode an MRSV grid. OUT is chosen by its extension: .nrrd (with a header),\n"
     "  .pgm (2-D uint8 or uint16), or else a headerless raw file of the stream's sample\n"
@@ -39,7 +47,7 @@ int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes", "levels"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "vertices", "fraction"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -62,8 +70,6 @@ int runDecode(int argc, char** argv) {
   if (args.has("levels") && (!parseUint64(args.value("levels"), &levels) || levels > 16))
     return fail(cmd, "--levels '" + args.value("levels") + "' is not a whole number from 0 to 16",
                 kExitUsage);
-  if (levels > 0 && args.flag("canonical"))
-    return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
 
   Progress progress("decode", args.flag("quiet"));
@@ -75,6 +81,11 @@ int runDecode(int argc, char** argv) {
     bytes.resize(static_cast<size_t>(byte_limit));
     options.container.allow_partial_tail = true;
   }
+  if (isProgressiveMeshStream(bytes.data(), bytes.size())) return runMeshDecode(args, in, out, bytes, options);
+  if (args.has("faces") || args.has("vertices") || args.has("fraction"))
+    return fail(cmd, in + ": --faces, --vertices and --fraction are for PM streams; this is a grid", kExitUsage);
+  if (levels > 0 && args.flag("canonical"))
+    return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
   progress.update(0.2);
   DecodedGrid grid;
   if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok())

@@ -19,6 +19,9 @@ namespace {
 const char kHelp[] =
     "Usage: mrsv encode [options] IN OUT.mrsv\n"
     "\n"
+    "(With a mesh IN.obj, IN.ply or IN.off, this encodes a progressive mesh instead:\n"
+    "see 'mrsv encode --help x.obj'.)\n"
+    "\n"
     "Encode a grid of samples (a terrain, an image, a volume) into an MRSV file.\n"
     "IN is chosen by its extension: .nrrd (attached header, raw encoding), .pgm (binary,\n"
     "8 or 16 bit), .hgt (SRTM: square big-endian int16, voids -32768), or else a\n"
@@ -161,6 +164,7 @@ bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::
 }  // namespace
 
 int runEncode(int argc, char** argv) {
+  if (isMeshEncode(argc, argv)) return runMeshEncode(argc, argv);
   const char* cmd = "encode";
   Args args;
   std::string error;

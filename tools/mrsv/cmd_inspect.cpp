@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "mrsv/file_io.h"
 #include "mrsv/grid.h"
+#include "mrsv/progressive_mesh.h"
 
 namespace mrsv::cli {
 namespace {
@@ -223,6 +224,22 @@ int runCheck(int argc, char** argv) {
     if (!readWholeFile(file, &bytes, &error)) {
       fail(cmd, file + ": " + error, kExitIo);
       if (status == kExitOk) status = kExitIo;
+      continue;
+    }
+    if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
+      DecodedMesh decoded;
+      Error e = decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &decoded);
+      if (!e.ok()) {
+        reportError(cmd, file, e);
+        status = kExitInvalidData;
+      } else if (!args.flag("quiet")) {
+        const PmHeader& h = decoded.header;
+        std::printf("%s: ok: progressive mesh, %u vertices (base %u, %u triangles), %u splits in %u batches, "
+                    "every record checked; %u-bit positions%s%s\n",
+                    file.c_str(), h.vertex_count, h.base_vertex_count, h.base_triangle_count, h.splitCount(),
+                    h.batch_count, unsigned{h.position_bits}, h.scalar_bits ? ", scalar" : "",
+                    decoded.container.complete ? "" : "; a prefix (no MEND)");
+      }
       continue;
     }
     DecodedGrid grid;

@@ -1,11 +1,26 @@
 // The subcommands of mrsv. Each takes the arguments after its name.
 #pragma once
 
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mrsv/grid.h"
+
 namespace mrsv::cli {
 
 int runEncode(int argc, char** argv);
 int runDecode(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runCheck(int argc, char** argv);
+int runCompare(int argc, char** argv);
+
+// Meshes (cmd_mesh.cpp): encode dispatches when an argument names a mesh file;
+// decode and check dispatch on the stream's first chunk.
+bool isMeshEncode(int argc, char** argv);
+int runMeshEncode(int argc, char** argv);
+class Args;
+int runMeshDecode(const Args& args, const std::string& in, const std::string& out,
+                  const std::vector<uint8_t>& bytes, const DecodeOptions& options);
 
 }  // namespace mrsv::cli

@@ -19,6 +19,7 @@ const char kHelp[] =
     "  decode   decode an .mrsv file, or a prefix of one, to raw samples\n"
     "  info     print the chunk table, header and metadata of an .mrsv file\n"
     "  check    validate .mrsv files; one line per file naming any broken rule\n"
+    "  compare  distances between two triangle meshes (Hausdorff, mean, RMS; Metro-like)\n"
     "\n"
     "'mrsv COMMAND --help' describes each command. 'mrsv --version' prints versions.\n"
     "Exit status: 0 success, 1 invalid input data, 2 usage error, 3 file error.\n";
@@ -33,6 +34,7 @@ const Command kCommands[] = {
     {"decode", mrsv::cli::runDecode},
     {"info", mrsv::cli::runInfo},
     {"check", mrsv::cli::runCheck},
+    {"compare", mrsv::cli::runCompare},
 };
 
 }  // namespace

@@ -41,6 +41,9 @@ constexpr ChunkType kChunkWaveletHeader{{'W', 'H', 'D', 'R'}};
 constexpr ChunkType kChunkNodataMask{{'G', 'M', 'S', 'K'}};
 constexpr ChunkType kChunkBand{{'G', 'B', 'N', 'D'}};
 constexpr ChunkType kChunkResidual{{'G', 'R', 'E', 'S'}};
+constexpr ChunkType kChunkMeshHeader{{'P', 'H', 'D', 'R'}};
+constexpr ChunkType kChunkBaseMesh{{'P', 'B', 'A', 'S'}};
+constexpr ChunkType kChunkSplits{{'P', 'S', 'P', 'L'}};
 
 // True for the critical types this decoder implements.
 bool isKnownCriticalChunk(const ChunkType& type);

@@ -15,6 +15,10 @@ constexpr uint32_t kMaxMetadataKey = 64;            // B.2: bytes in one key
 constexpr uint32_t kMaxMetadataEntries = 1024;      // B.2
 constexpr uint32_t kMaxGridAxis = 1u << 24;         // B.3: samples along one axis
 constexpr uint64_t kMaxGridSamples = uint64_t{1} << 32;  // B.3: samples in one grid
+constexpr uint32_t kMaxMeshVertices = 1u << 28;     // B.5: PHDR.vertex_count
+constexpr uint32_t kMaxBaseTriangles = 1u << 29;    // B.5: PHDR.base_triangle_count
+constexpr uint32_t kMaxRingSize = 1024;             // B.5: neighbours of a vertex that is split
+constexpr uint8_t kMaxPositionBits = 30;            // B.5: PHDR.position_bits and scalar_bits
 
 // Default for DecodeOptions::max_output_bytes: what the reference decoder
 // agrees to allocate for one decoded grid unless the caller says otherwise.

@@ -42,6 +42,12 @@ enum class Status : int {
   kBadBandHeader = 205,
   kBadEntropyPayload = 206,
 
+  // Progressive meshes (spec: 6)
+  kBadMeshHeader = 301,
+  kBadBaseMesh = 302,
+  kBadVertexSplit = 303,
+  kSplitCountMismatch = 304,
+
   // Resources and environment (spec: Annex A.3); not caused by a stream rule
   kResourceLimit = 901,
   kIoError = 902,

@@ -55,7 +55,9 @@ bool isChunkTypeSyntax(const ChunkType& type) {
 }
 
 // spec: 2.5. A content header opens the file and says what the file holds.
-bool isContentHeader(const ChunkType& type) { return type == kChunkGridHeader; }
+bool isContentHeader(const ChunkType& type) {
+  return type == kChunkGridHeader || type == kChunkMeshHeader;
+}
 
 std::string printable(const ChunkType& type) {
   std::string s;
@@ -78,7 +80,8 @@ std::string printable(const ChunkType& type) {
 bool isKnownCriticalChunk(const ChunkType& type) {
   return type == kChunkEnd || type == kChunkGridHeader || type == kChunkGridStored ||
          type == kChunkWaveletHeader || type == kChunkNodataMask || type == kChunkBand ||
-         type == kChunkResidual;
+         type == kChunkResidual || type == kChunkMeshHeader || type == kChunkBaseMesh ||
+         type == kChunkSplits;
 }
 
 Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,
@@ -170,7 +173,7 @@ Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& op
     bool header_chunk = isContentHeader(chunk.chunk_type);
     if (out->chunks.empty() && !header_chunk)
       return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(),
-                  "the first chunk must be a content header (GHDR)");
+                  "the first chunk must be a content header (GHDR or PHDR)");
     if (!out->chunks.empty() && header_chunk)
       return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(), "a second content header");
     if (chunk.chunk_type == kChunkMeta) {

@@ -27,6 +27,10 @@ const char* statusName(Status status) {
     case Status::kBadWaveletHeader: return "bad_wavelet_header";
     case Status::kBadBandHeader: return "bad_band_header";
     case Status::kBadEntropyPayload: return "bad_entropy_payload";
+    case Status::kBadMeshHeader: return "bad_mesh_header";
+    case Status::kBadBaseMesh: return "bad_base_mesh";
+    case Status::kBadVertexSplit: return "bad_vertex_split";
+    case Status::kSplitCountMismatch: return "split_count_mismatch";
     case Status::kResourceLimit: return "resource_limit";
     case Status::kIoError: return "io_error";
     case Status::kInvalidArgument: return "invalid_argument";

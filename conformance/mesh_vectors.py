@@ -1,0 +1,141 @@
+"""Conformance vectors of progressive meshes (spec 6), for make_coded_vectors.py.
+
+Valid vectors are written by the reference encoder from real meshes: the Viewpoint
+cow (closed) from ../shared/data/surface, and a window of the Mt. St. Helens
+terrain crop in demo/data turned into a mesh here (open, with boundary; also with
+its heights as the per-vertex scalar). Prefixes of the streams give the expected
+meshes at several levels. Their expected output is the reference decoder's
+canonical mesh (spec 6.8). Invalid vectors are valid ones edited chunk by chunk,
+each breaking one rule; the code and offset are derived here from the layout.
+"""
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHARED = os.path.join(HERE, "..", "..", "shared", "data", "surface")
+CROPS = os.path.join(HERE, "..", "demo", "data")
+
+
+def terrain_mesh_text(fmt, size=20, origin=(40, 50)):
+    """A size x size window of the St Helens crop as OBJ text or ASCII PLY with a scalar."""
+    data = open(os.path.join(CROPS, "mt_st_helens_128x128_int16le.raw"), "rb").read()
+    heights = [[struct.unpack_from("<h", data, 2 * ((origin[1] + y) * 128 + origin[0] + x))[0]
+                for x in range(size)] for y in range(size)]
+    verts = [(x * 10.0, y * 10.0, float(heights[y][x])) for y in range(size) for x in range(size)]
+    tris = []
+    for y in range(size - 1):
+        for x in range(size - 1):
+            a, b, c, d = y * size + x, y * size + x + 1, (y + 1) * size + x, (y + 1) * size + x + 1
+            tris += [(a, b, d), (a, d, c)]
+    if fmt == "obj":
+        lines = [f"v {x} {y} {z}" for x, y, z in verts] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in tris]
+        return "\n".join(lines) + "\n"
+    head = ["ply", "format ascii 1.0", f"element vertex {len(verts)}", "property float x", "property float y",
+            "property float z", "property float height", f"element face {len(tris)}",
+            "property list uchar int vertex_indices", "end_header"]
+    body = [f"{x} {y} {z} {z}" for x, y, z in verts] + [f"3 {a} {b} {c}" for a, b, c in tris]
+    return "\n".join(head + body) + "\n"
+
+
+def build_mesh(g, parse_chunks, frame, offset_of, find):
+    cow = os.path.join(SHARED, "cow_viewpoint_2903v_5804tri.obj")
+    terrain_obj = os.path.join(g.tmp, "terrain.obj")
+    terrain_ply = os.path.join(g.tmp, "terrain_scalar.ply")
+    with open(terrain_obj, "w") as f:
+        f.write(terrain_mesh_text("obj"))
+    with open(terrain_ply, "w") as f:
+        f.write(terrain_mesh_text("ply"))
+
+    def encode(path, options):
+        return g.encode_file(path, options)
+
+    def prefixes(name, data, clause, what):
+        """The stream cut after PBAS and after about half of its batches (no MEND)."""
+        chunks = parse_chunks(data)[:-1]  # without MEND
+        base = find(chunks, "PBAS")
+        splits = [i for i, (t, _) in enumerate(chunks) if t == "PSPL"]
+        g.valid(f"{name}_prefix_base", frame(chunks[:base + 1]), clause, f"{what}: prefix up to PBAS, the base mesh")
+        if len(splits) >= 2:
+            half = splits[len(splits) // 2]
+            g.valid(f"{name}_prefix_half", frame(chunks[:half + 1]), clause,
+                    f"{what}: prefix of {len(splits) // 2 + 1} of {len(splits)} batches")
+
+    cow_stream = encode(cow, ["--bits", "14"])
+    g.valid("mesh_cow", cow_stream, "6", "the Viewpoint cow (closed), 14-bit positions, quadric cost")
+    prefixes("mesh_cow", cow_stream, "6.1, 6.7", "the cow")
+    g.valid("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free"]), "6.7.3",
+            "the cow with free placement: every split also moves vs")
+    g.valid("mesh_cow_paper", encode(cow, ["--bits", "10", "--cost", "paper"]), "6",
+            "the cow simplified with the paper's energies (50, 1, 5), 10-bit positions")
+    terrain = encode(terrain_obj, ["--bits", "16"])
+    g.valid("mesh_terrain", terrain, "6.6.2, 6.7.2", "a terrain window as a mesh: boundary splits of every kind")
+    prefixes("mesh_terrain", terrain, "6.1, 6.7", "the terrain mesh")
+    g.valid("mesh_terrain_scalar", encode(terrain_ply, ["--bits", "16", "--scalar", "height", "--scalar-bits", "12"]),
+            "6.4, 6.7.3", "a terrain window with its heights as the per-vertex scalar")
+
+    # Invalid: header fields (6.2).
+    chunks = parse_chunks(cow_stream)
+    hdr_at = offset_of(chunks, 0) + 8
+
+    def with_header(edit):
+        payload = bytearray(chunks[0][1])
+        edit(payload)
+        return [("PHDR", bytes(payload))] + chunks[1:]
+
+    def put(payload, at, fmt, value):
+        struct.pack_into(fmt, payload, at, value)
+
+    g.invalid("mesh_bad_placement", with_header(lambda p: put(p, 0, "<B", 2)), 301, "bad_mesh_header",
+              hdr_at + 0, "6.2", "placement 2 is not defined")
+    g.invalid("mesh_position_bits_zero", with_header(lambda p: put(p, 1, "<B", 0)), 301, "bad_mesh_header",
+              hdr_at + 1, "6.2", "position_bits 0")
+    g.invalid("mesh_position_bits_31", with_header(lambda p: put(p, 1, "<B", 31)), 301, "bad_mesh_header",
+              hdr_at + 1, "6.2, B.5", "position_bits above 30")
+    g.invalid("mesh_reserved", with_header(lambda p: put(p, 3, "<B", 1)), 105, "reserved_nonzero",
+              hdr_at + 3, "6.2", "the reserved byte of PHDR is not 0")
+    g.invalid("mesh_too_many_vertices", with_header(lambda p: put(p, 4, "<I", (1 << 28) + 1)), 301,
+              "bad_mesh_header", hdr_at + 4, "6.2, B.5", "vertex_count above 2^28")
+    g.invalid("mesh_base_two_vertices", with_header(lambda p: put(p, 8, "<I", 2)), 301, "bad_mesh_header",
+              hdr_at + 8, "6.2", "base_vertex_count 2")
+    g.invalid("mesh_step_zero", with_header(lambda p: put(p, 48, "<d", 0.0)), 301, "bad_mesh_header",
+              hdr_at + 48, "6.2", "position_step 0")
+    g.invalid("mesh_scalar_fields_without_scalar", with_header(lambda p: put(p, 64, "<d", 1.0)), 301,
+              "bad_mesh_header", hdr_at + 56, "6.2", "scalar_step set although scalar_bits is 0")
+    g.invalid("mesh_header_length", [("PHDR", chunks[0][1] + b"\0")] + chunks[1:], 117, "bad_chunk_length",
+              offset_of(chunks, 0) + 4, "6.2", "a 73-byte PHDR")
+
+    # Invalid: chunk order and counts (6.1, 6.7).
+    mend = len(chunks) - 1
+    base = find(chunks, "PBAS")
+    first_split = find(chunks, "PSPL")
+    c = chunks[:base] + [chunks[first_split], chunks[base]] + chunks[first_split + 1:]
+    g.invalid("mesh_split_before_base", c, 116, "chunk_order", offset_of(c, base), "6.1", "PSPL before PBAS")
+    c = chunks[:base + 1] + [chunks[base]] + chunks[base + 1:]
+    g.invalid("mesh_two_bases", c, 116, "chunk_order", offset_of(c, base + 1), "6.1", "a second PBAS")
+    c = chunks[:mend - 1] + chunks[mend:]
+    g.invalid("mesh_missing_batch", c, 304, "split_count_mismatch", offset_of(c, len(c) - 1), "6.1",
+              "a complete stream without its last PSPL")
+    c = chunks[:mend] + [chunks[mend - 1]] + chunks[mend:]
+    g.invalid("mesh_extra_batch", c, 304, "split_count_mismatch", offset_of(c, mend), "6.1",
+              "one PSPL more than batch_count")
+    c = list(chunks)
+    c[first_split] = ("PSPL", struct.pack("<I", 0) + chunks[first_split][1][4:])
+    g.invalid("mesh_split_count_zero", c, 304, "split_count_mismatch", offset_of(c, first_split) + 8, "6.7",
+              "a batch of 0 splits")
+    c = list(chunks)
+    c[first_split] = ("PSPL", struct.pack("<I", 1 << 30) + chunks[first_split][1][4:])
+    g.invalid("mesh_split_count_too_large", c, 304, "split_count_mismatch", offset_of(c, first_split) + 8,
+              "6.7", "a batch of more splits than the stream has left")
+    last = mend - 1
+    c = list(chunks)
+    c[last] = ("PSPL", chunks[last][1][:-3])
+    g.invalid("mesh_truncated_record", c, 206, "bad_entropy_payload", offset_of(c, last) + 12, "6.7.3",
+              "the last batch's coded splits cut 3 bytes short: a truncated record")
+    c = list(chunks)
+    c[last] = ("PSPL", chunks[last][1] + b"\0\0")
+    g.invalid("mesh_trailing_coded_bytes", c, 206, "bad_entropy_payload", offset_of(c, last) + 12, "6.7",
+              "two bytes after the last coded split")
+    c = list(chunks)
+    c[base] = ("PBAS", b"\x01" + chunks[base][1][1:])
+    g.invalid("mesh_base_first_byte", c, 206, "bad_entropy_payload", offset_of(c, base) + 8, "5.6, 6.4",
+              "coded base mesh that does not start with a 0 byte")

@@ -1,0 +1,148 @@
+// spec: 6.1 decoding a PM stream: PHDR, PBAS, then PSPL batches.
+#include <new>
+#include <string>
+
+#include "common/byte_reader.h"
+#include "pm/pm_records.h"
+
+namespace mrsv {
+
+bool isProgressiveMeshStream(const uint8_t* data, size_t size) {
+  // The first chunk's type follows the 12-byte file header (spec 2.2, 2.3).
+  return size >= kFileHeaderSize + 4 && data[12] == 'P' && data[13] == 'H' && data[14] == 'D' &&
+         data[15] == 'R';
+}
+
+namespace {
+
+// spec 6.3 and Annex B.5: what a decoder allocates for the whole stream.
+uint64_t memoryNeeded(const PmHeader& h) {
+  const uint64_t splits = h.splitCount();
+  const uint64_t triangles = uint64_t{h.base_triangle_count} + 2 * splits;
+  return uint64_t{h.vertex_count} * (sizeof(std::array<int32_t, 3>) + 4 + 4) + triangles * 3 * 8 +
+         splits * sizeof(SplitRecord);
+}
+
+// A coded payload decodes to exactly its bytes (spec 5.6, as for grids).
+Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, const std::string& field) {
+  if (rc.overrun() != 0)
+    return Error{Status::kBadEntropyPayload, offset, field, "coded data ends before the records do"};
+  if (rc.consumed() != size)
+    return Error{Status::kBadEntropyPayload, offset, field,
+                 std::to_string(size - rc.consumed()) + " bytes of coded data left over"};
+  return {};
+}
+
+Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
+  const Container& c = out->container;
+  ProgressiveMesh::Impl& s = out->mesh.state();
+  s.header = out->header;
+  const PmHeader& h = s.header;
+  pm::PmContexts ctx;
+  bool seen_base = false;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    const uint64_t at = chunk.payloadOffset();
+    if (chunk.chunk_type == kChunkBaseMesh) {
+      // spec 6.4 base_mesh()
+      if (seen_base) return Error{Status::kChunkOrder, chunk.offset, "PBAS", "more than one PBAS chunk"};
+      seen_base = true;
+      RangeDecoder rc(chunk.payload, chunk.chunk_length);
+      if (!rc.validStart())
+        return Error{Status::kBadEntropyPayload, at, "PBAS", "coded data must start with a 0 byte"};
+      pm::PmDecoder coder{&rc};
+      std::vector<std::array<uint32_t, 3>> triangles;
+      std::string problem = pm::codeBaseMesh(coder, ctx, s, &triangles);
+      if (!problem.empty()) {
+        Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
+        return Error{status, at, "PBAS", problem};
+      }
+      if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "PBAS"); !e.ok()) return e;
+      problem = s.table.build(h.base_vertex_count, triangles);
+      if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
+      out->has_mesh = true;
+    } else if (chunk.chunk_type == kChunkSplits) {
+      // spec 6.7 batch(): split_count u32, then the coded splits.
+      if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "PSPL", "PSPL before PBAS"};
+      ByteReader r(chunk.payload, chunk.chunk_length);
+      const uint32_t split_count = r.u32();
+      if (r.overrun())
+        return Error{Status::kBadChunkLength, chunk.offset + 4, "PSPL.chunk_length",
+                     "PSPL payload shorter than its 4-byte split_count"};
+      const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
+      if (out->batches_decoded == h.batch_count)
+        return Error{Status::kSplitCountMismatch, chunk.offset, "PSPL", "more PSPL chunks than batch_count"};
+      if (split_count == 0 || split_count > remaining)
+        return Error{Status::kSplitCountMismatch, at, "PSPL.split_count",
+                     "split_count " + std::to_string(split_count) + " must be 1 to the " +
+                         std::to_string(remaining) + " splits left"};
+      RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
+      if (!rc.validStart())
+        return Error{Status::kBadEntropyPayload, at + 4, "PSPL", "coded data must start with a 0 byte"};
+      pm::PmDecoder coder{&rc};
+      const uint32_t batch_start = s.table.vertexCount();
+      int64_t prev_vs = -1;
+      for (uint32_t k = 0; k < split_count; ++k) {
+        SplitRecord record;
+        std::string problem = pm::codeSplit(coder, ctx, s, batch_start, &prev_vs, &record);
+        if (!problem.empty()) {
+          Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
+          return Error{status, at + 4, "PSPL.vertex_split",
+                       "split " + std::to_string(k) + " of batch " + std::to_string(out->batches_decoded) +
+                           ": " + problem};
+        }
+        s.splits.push_back(record);
+        s.applySplit(s.ring);
+      }
+      if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "PSPL"); !e.ok()) return e;
+      ++out->batches_decoded;
+    } else if (chunk.chunk_type.critical()) {
+      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                   chunk.chunk_type.str() + " in a progressive mesh stream"};
+    }
+    // meta was read by the caller; unknown ancillary chunks are skipped (spec 2.4).
+  }
+  (void)options;
+  if (c.complete) {
+    if (!seen_base)
+      return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PM stream needs PBAS before MEND"};
+    if (out->batches_decoded != h.batch_count || s.splits.size() != h.splitCount())
+      return Error{Status::kSplitCountMismatch, c.end_chunk_offset, "MEND",
+                   std::to_string(out->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
+                       " splits, but PHDR announces " + std::to_string(h.batch_count) + " with " +
+                       std::to_string(h.splitCount())};
+  }
+  return {};
+}
+
+}  // namespace
+
+Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
+                            DecodedMesh* out) {
+  *out = DecodedMesh{};
+  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
+  const Container& c = out->container;
+  if (c.chunks.empty()) return {};
+  if (c.chunks[0].chunk_type != kChunkMeshHeader)
+    return Error{Status::kChunkOrder, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
+                 "not a progressive mesh stream (the first chunk is not PHDR)"};
+  if (Error e = parsePmHeader(c.chunks[0], &out->header); !e.ok()) return e;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkMeta)
+      if (Error e = parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out->metadata);
+          !e.ok())
+        return e;
+  }
+  const uint64_t need = memoryNeeded(out->header);
+  if (need > options.max_output_bytes)
+    return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR",
+                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
+  try {
+    return decodeChunks(options, out);
+  } catch (const std::bad_alloc&) {
+    return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR", "out of memory"};
+  }
+}
+
+}  // namespace mrsv

@@ -1,0 +1,261 @@
+// spec: 6.9 the reference PM encoder (informative).
+#include "pm/pm_encode.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bitstream/range_encoder.h"
+#include "common/byte_writer.h"
+#include "mrsv/container.h"
+#include "mrsv/limits.h"
+#include "pm/pm_records.h"
+
+namespace mrsv {
+namespace {
+
+constexpr uint32_t kNone = CornerTable::kNone;
+
+// Uniform quantisation over [lo, lo + step * (2^bits - 1)].
+struct Quantiser {
+  double origin = 0, step = 1;
+  int32_t top = 0;
+  void fit(double lo, double hi, int bits) {
+    origin = lo;
+    top = static_cast<int32_t>((int64_t{1} << bits) - 1);
+    step = hi > lo ? (hi - lo) / top : 1.0;
+  }
+  int32_t operator()(double v) const {
+    double q = std::nearbyint((v - origin) / step);
+    return static_cast<int32_t>(std::clamp(q, 0.0, static_cast<double>(top)));
+  }
+};
+
+// What the decoder needs to know of one collapse, found by replaying it.
+struct ReplayedCollapse {
+  uint32_t removed, kept;
+  uint32_t left, right;  // third vertex of the face with edge removed->kept / kept->removed
+  std::array<int32_t, 3> removed_position, kept_position_before;
+  int32_t removed_scalar;
+};
+
+}  // namespace
+
+bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& collapses,
+                           const PmEncodeOptions& options, const Metadata& metadata,
+                           std::vector<uint8_t>* out, PmEncodeReport* report, std::string* error) {
+  const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
+  const bool free_placement = options.placement == Placement::kFree;
+  const bool has_scalars = !mesh.scalars.empty();
+  if (n > kMaxMeshVertices) {
+    *error = "more than 2^28 vertices";
+    return false;
+  }
+  if (options.position_bits < 1 || options.position_bits > kMaxPositionBits ||
+      (has_scalars && (options.scalar_bits < 1 || options.scalar_bits > kMaxPositionBits))) {
+    *error = "position and scalar bits must be 1 to 30";
+    return false;
+  }
+  // Quantisation: one step for all axes, so that the shape keeps its proportions.
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  auto grow = [&](const std::array<double, 3>& p) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  };
+  for (const auto& p : mesh.positions) grow(p);
+  if (free_placement)
+    for (const auto& batch : collapses.batches)
+      for (const auto& c : batch) grow(c.kept_position);
+  double extent = 0;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+  Quantiser axis[3];
+  for (int k = 0; k < 3; ++k) axis[k].fit(lo[k], lo[k] + extent, options.position_bits);
+  Quantiser scalar_q;
+  if (has_scalars) {
+    auto [smin, smax] = std::minmax_element(mesh.scalars.begin(), mesh.scalars.end());
+    scalar_q.fit(*smin, *smax, options.scalar_bits);
+  }
+  auto quantise = [&](const std::array<double, 3>& p) {
+    return std::array<int32_t, 3>{axis[0](p[0]), axis[1](p[1]), axis[2](p[2])};
+  };
+
+  // Replay the collapses on per-vertex face lists.
+  std::vector<std::array<uint32_t, 3>> faces = mesh.triangles;
+  std::vector<uint8_t> alive(faces.size(), 1);
+  std::vector<std::vector<uint32_t>> vertex_faces(n);
+  for (uint32_t f = 0; f < faces.size(); ++f)
+    for (uint32_t v : faces[f]) {
+      if (v >= n) {
+        *error = "triangle " + std::to_string(f) + " uses a vertex out of range";
+        return false;
+      }
+      vertex_faces[v].push_back(f);
+    }
+  std::vector<std::array<int32_t, 3>> position(n);
+  for (uint32_t v = 0; v < n; ++v) position[v] = quantise(mesh.positions[v]);
+  std::vector<int32_t> scalar(has_scalars ? n : 0);
+  for (uint32_t v = 0; v < scalar.size(); ++v) scalar[v] = scalar_q(mesh.scalars[v]);
+  std::vector<uint8_t> removed(n, 0);
+  std::vector<std::vector<ReplayedCollapse>> replayed(collapses.batches.size());
+  for (size_t t = 0; t < collapses.batches.size(); ++t) {
+    for (const HalfEdgeCollapse& c : collapses.batches[t]) {
+      const uint32_t u = c.removed, v = c.kept;
+      if (u >= n || v >= n || u == v || removed[u] || removed[v]) {
+        *error = "collapse " + std::to_string(u) + " -> " + std::to_string(v) + " names a removed vertex";
+        return false;
+      }
+      ReplayedCollapse r{u, v, kNone, kNone, position[u], position[v], has_scalars ? scalar[u] : 0};
+      for (uint32_t f : vertex_faces[u]) {
+        if (!alive[f]) continue;
+        const auto& tri = faces[f];
+        for (int k = 0; k < 3; ++k) {
+          if (tri[k] == u && tri[(k + 1) % 3] == v) r.left = tri[(k + 2) % 3];
+          if (tri[k] == v && tri[(k + 1) % 3] == u) r.right = tri[(k + 2) % 3];
+        }
+      }
+      if (r.left == kNone && r.right == kNone) {
+        *error = "collapse " + std::to_string(u) + " -> " + std::to_string(v) + " is not along an edge";
+        return false;
+      }
+      for (uint32_t f : vertex_faces[u]) {
+        if (!alive[f]) continue;
+        auto& tri = faces[f];
+        if (tri[0] == v || tri[1] == v || tri[2] == v) {
+          alive[f] = 0;
+          continue;
+        }
+        for (uint32_t& x : tri)
+          if (x == u) x = v;
+        vertex_faces[v].push_back(f);
+      }
+      vertex_faces[u].clear();
+      vertex_faces[u].shrink_to_fit();
+      removed[u] = 1;
+      if (free_placement) position[v] = quantise(c.kept_position);
+      replayed[t].push_back(r);
+    }
+  }
+
+  // The base mesh: surviving faces in input order, vertices numbered by first use.
+  std::vector<uint32_t> id(n, kNone);
+  std::vector<std::array<uint32_t, 3>> base_faces;
+  ProgressiveMesh pm;
+  ProgressiveMesh::Impl& s = pm.state();
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    if (!alive[f]) continue;
+    std::array<uint32_t, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      uint32_t v = faces[f][k];
+      if (id[v] == kNone) {
+        id[v] = static_cast<uint32_t>(s.positions.size());
+        s.positions.push_back(position[v]);
+        if (has_scalars) s.scalars.push_back(scalar[v]);
+      }
+      tri[k] = id[v];
+    }
+    base_faces.push_back(tri);
+  }
+  PmHeader& h = s.header;
+  h.placement = free_placement ? kPlacementFree : kPlacementEndpoint;
+  h.position_bits = options.position_bits;
+  h.scalar_bits = has_scalars ? options.scalar_bits : 0;
+  h.base_vertex_count = static_cast<uint32_t>(s.positions.size());
+  h.base_triangle_count = static_cast<uint32_t>(base_faces.size());
+  uint64_t split_total = 0;
+  for (const auto& batch : replayed) split_total += batch.size();
+  h.vertex_count = static_cast<uint32_t>(h.base_vertex_count + split_total);
+  h.batch_count = 0;
+  for (const auto& batch : replayed) h.batch_count += batch.empty() ? 0 : 1;
+  for (int k = 0; k < 3; ++k) h.origin[k] = axis[k].origin;
+  h.position_step = axis[0].step;
+  if (has_scalars) {
+    h.scalar_origin = scalar_q.origin;
+    h.scalar_step = scalar_q.step;
+  }
+  if (h.base_vertex_count < 3) {
+    *error = "the base mesh has fewer than 3 vertices";
+    return false;
+  }
+  if (std::string problem = s.table.build(h.base_vertex_count, base_faces); !problem.empty()) {
+    *error = "the base mesh is not an oriented manifold: " + problem;
+    return false;
+  }
+
+  ContainerWriter writer;
+  writer.addChunk(kChunkMeshHeader, serializePmHeader(h));
+  if (!metadata.entries.empty()) writer.addChunk(kChunkMeta, serializeMetadata(metadata));
+  pm::PmContexts ctx;
+  {
+    std::vector<uint8_t> payload;
+    RangeEncoder rc(&payload);
+    pm::PmEncoder coder{&rc};
+    std::vector<std::array<uint32_t, 3>> tris = base_faces;
+    std::string problem = pm::codeBaseMesh(coder, ctx, s, &tris);
+    if (!problem.empty()) {
+      *error = "base mesh: " + problem;
+      return false;
+    }
+    rc.finish();
+    report->base_bytes = payload.size();
+    writer.addChunk(kChunkBaseMesh, payload);
+  }
+  report->split_bytes = 0;
+  for (size_t t = replayed.size(); t-- > 0;) {
+    std::vector<ReplayedCollapse>& batch = replayed[t];
+    if (batch.empty()) continue;
+    for (const auto& r : batch)
+      if (id[r.kept] == kNone) {
+        *error = "a kept vertex is not in the mesh when its split is decoded";
+        return false;
+      }
+    std::sort(batch.begin(), batch.end(),
+              [&](const ReplayedCollapse& x, const ReplayedCollapse& y) { return id[x.kept] < id[y.kept]; });
+    std::vector<uint8_t> payload;
+    ByteWriter(&payload).u32(static_cast<uint32_t>(batch.size()));
+    RangeEncoder rc(&payload);
+    pm::PmEncoder coder{&rc};
+    const uint32_t batch_start = s.table.vertexCount();
+    int64_t prev_vs = -1;
+    CornerTable::Ring ring;
+    for (const ReplayedCollapse& c : batch) {
+      SplitRecord record;
+      record.vs = id[c.kept];
+      s.table.ring(record.vs, &ring);
+      const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
+      auto where = [&](uint32_t v, uint32_t absent) {
+        if (v == kNone) return absent;
+        auto it = std::find(ring.neighbours.begin(), ring.neighbours.end(), id[v]);
+        return it == ring.neighbours.end() ? kNone : static_cast<uint32_t>(it - ring.neighbours.begin());
+      };
+      record.a = where(c.left, 0);
+      record.b = where(c.right, d - 1);
+      record.shape = {c.left != kNone, c.right != kNone};
+      if (record.a == kNone || record.b == kNone || (c.left == kNone && !ring.boundary) ||
+          (c.right == kNone && !ring.boundary)) {
+        *error = "collapse " + std::to_string(c.removed) + " -> " + std::to_string(c.kept) +
+                 " does not match the decoder's ring (simplifier broke batch independence?)";
+        return false;
+      }
+      record.vt_position = c.removed_position;
+      for (int k = 0; k < 3; ++k) record.vs_move[k] = c.kept_position_before[k] - s.positions[record.vs][k];
+      record.vt_scalar = c.removed_scalar;
+      std::string problem = pm::codeSplit(coder, ctx, s, batch_start, &prev_vs, &record);
+      if (!problem.empty()) {
+        *error = "split of vertex " + std::to_string(record.vs) + ": " + problem;
+        return false;
+      }
+      id[c.removed] = s.table.vertexCount();
+      s.splits.push_back(record);
+      s.applySplit(s.ring);
+    }
+    rc.finish();
+    report->split_bytes += payload.size();
+    writer.addChunk(kChunkSplits, payload);
+  }
+  *out = writer.finish();
+  report->base_vertices = h.base_vertex_count;
+  report->base_triangles = h.base_triangle_count;
+  report->splits = static_cast<uint32_t>(split_total);
+  report->batches = h.batch_count;
+  return true;
+}
+
+}  // namespace mrsv

@@ -1,0 +1,47 @@
+// The state of a decoded progressive mesh (spec 6.6): connectivity, quantised
+// positions and scalars, and every split decoded so far, so that the level
+// can move both ways. Shared by the decoder and the encoder, which replays
+// its own stream through it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mesh/corner_table.h"
+#include "mrsv/progressive_mesh.h"
+
+namespace mrsv {
+
+// One vertex split as decoded: enough to apply it again after undoing it.
+struct SplitRecord {
+  uint32_t vs = 0;
+  uint32_t a = 0, b = 0;  // ring positions (spec 6.6.2)
+  CornerTable::SplitShape shape;
+  std::array<int32_t, 3> vt_position{};
+  std::array<int32_t, 3> vs_move{};  // placement 1 only
+  int32_t vt_scalar = 0;
+};
+
+struct ProgressiveMesh::Impl {
+  PmHeader header;
+  CornerTable table;
+  std::vector<std::array<int32_t, 3>> positions;
+  std::vector<int32_t> scalars;
+  std::vector<SplitRecord> splits;
+  uint32_t level = 0;  // splits applied
+  CornerTable::Ring ring;  // scratch
+
+  // Applies splits[level], whose vs has ring `vs_ring` now.
+  void applySplit(const CornerTable::Ring& vs_ring);
+  // Applies splits[level] (finding the ring first).
+  void refineOne() {
+    table.ring(splits[level].vs, &ring);
+    applySplit(ring);
+  }
+  // Undoes splits[level - 1].
+  void coarsenOne();
+};
+
+}  // namespace mrsv
