@@ -11,8 +11,7 @@
 // area-proportional random samples plus all vertices. --sweep also runs the
 // batch rule over a grid of batch_cost_ratio values.
 //
-// The mesh readers here are a stopgap until the io library's readers land;
-// non-manifold vertices are split the way mesh repair does.
+// Meshes are read and repaired as the PM encoder's input is (mrsv_io).
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -26,14 +25,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "mrsv/mesh_formats.h"
+#include "mrsv/mesh_repair.h"
 #include "simplify/simplify.h"
 
 namespace {
@@ -43,180 +41,6 @@ using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
 using Vec3 = std::array<double, 3>;
 using Tri = std::array<uint32_t, 3>;
-
-// ------------------------------------------------------------- reading --
-
-bool readObj(const std::string& path, mrsv::TriangleMesh* mesh) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream s(line);
-    std::string tag;
-    s >> tag;
-    if (tag == "v") {
-      Vec3 p;
-      s >> p[0] >> p[1] >> p[2];
-      mesh->positions.push_back(p);
-    } else if (tag == "f") {
-      std::vector<uint32_t> c;
-      std::string item;
-      while (s >> item) c.push_back(static_cast<uint32_t>(std::stoul(item)) - 1);
-      for (size_t i = 1; i + 1 < c.size(); ++i) mesh->triangles.push_back({c[0], c[i], c[i + 1]});
-    }
-  }
-  return true;
-}
-
-int plyTypeSize(const std::string& t) {
-  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
-  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
-  if (t == "double" || t == "float64") return 8;
-  return 0;
-}
-
-double plyValue(const unsigned char* p, const std::string& t, bool big_endian) {
-  unsigned char b[8];
-  const int n = plyTypeSize(t);
-  for (int i = 0; i < n; ++i) b[i] = big_endian ? p[n - 1 - i] : p[i];
-  if (t == "char" || t == "int8") return static_cast<int8_t>(b[0]);
-  if (t == "uchar" || t == "uint8") return b[0];
-  int16_t s16;
-  uint16_t u16;
-  int32_t s32;
-  uint32_t u32;
-  float f;
-  double d;
-  if (t == "short" || t == "int16") return std::memcpy(&s16, b, 2), s16;
-  if (t == "ushort" || t == "uint16") return std::memcpy(&u16, b, 2), u16;
-  if (t == "int" || t == "int32") return std::memcpy(&s32, b, 4), s32;
-  if (t == "uint" || t == "uint32") return std::memcpy(&u32, b, 4), u32;
-  if (t == "float" || t == "float32") return std::memcpy(&f, b, 4), f;
-  return std::memcpy(&d, b, 8), d;
-}
-
-bool readPly(const std::string& path, mrsv::TriangleMesh* mesh) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::string line, format;
-  size_t num_vertices = 0, num_faces = 0;
-  std::vector<std::string> vertex_types, vertex_names;
-  std::string count_type, index_type, element;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream s(line);
-    std::string word;
-    s >> word;
-    if (word == "format") {
-      s >> format;
-    } else if (word == "element") {
-      size_t n;
-      s >> element >> n;
-      if (element == "vertex") num_vertices = n;
-      if (element == "face") num_faces = n;
-    } else if (word == "property") {
-      std::string type;
-      s >> type;
-      if (element == "vertex") {
-        std::string name;
-        s >> name;
-        vertex_types.push_back(type);
-        vertex_names.push_back(name);
-      } else if (element == "face" && type == "list") {
-        s >> count_type >> index_type;
-      }
-    } else if (word == "end_header") {
-      break;
-    }
-  }
-  int xyz[3] = {-1, -1, -1};
-  for (size_t i = 0; i < vertex_names.size(); ++i) {
-    if (vertex_names[i] == "x") xyz[0] = static_cast<int>(i);
-    if (vertex_names[i] == "y") xyz[1] = static_cast<int>(i);
-    if (vertex_names[i] == "z") xyz[2] = static_cast<int>(i);
-  }
-  if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) return false;
-  mesh->positions.resize(num_vertices);
-  if (format == "ascii") {
-    for (size_t v = 0; v < num_vertices; ++v) {
-      std::vector<double> values(vertex_types.size());
-      for (double& x : values) in >> x;
-      mesh->positions[v] = {values[xyz[0]], values[xyz[1]], values[xyz[2]]};
-    }
-    for (size_t f = 0; f < num_faces; ++f) {
-      size_t n;
-      in >> n;
-      std::vector<uint32_t> c(n);
-      for (uint32_t& x : c) in >> x;
-      for (size_t i = 1; i + 1 < n; ++i) mesh->triangles.push_back({c[0], c[i], c[i + 1]});
-    }
-    return static_cast<bool>(in);
-  }
-  const bool big = format == "binary_big_endian";
-  std::vector<unsigned char> rest((std::istreambuf_iterator<char>(in)), {});
-  size_t at = 0;
-  std::vector<int> offsets;
-  int stride = 0;
-  for (const std::string& t : vertex_types) {
-    offsets.push_back(stride);
-    stride += plyTypeSize(t);
-  }
-  if (rest.size() < num_vertices * stride) return false;
-  for (size_t v = 0; v < num_vertices; ++v, at += stride) {
-    for (int k = 0; k < 3; ++k) {
-      mesh->positions[v][k] = plyValue(&rest[at + offsets[xyz[k]]], vertex_types[xyz[k]], big);
-    }
-  }
-  const int cs = plyTypeSize(count_type), is = plyTypeSize(index_type);
-  for (size_t f = 0; f < num_faces; ++f) {
-    if (at + cs > rest.size()) return false;
-    const size_t n = static_cast<size_t>(plyValue(&rest[at], count_type, big));
-    at += cs;
-    if (at + n * is > rest.size()) return false;
-    std::vector<uint32_t> c(n);
-    for (size_t i = 0; i < n; ++i, at += is) c[i] = static_cast<uint32_t>(plyValue(&rest[at], index_type, big));
-    for (size_t i = 1; i + 1 < n; ++i) mesh->triangles.push_back({c[0], c[i], c[i + 1]});
-  }
-  return true;
-}
-
-// Every extra fan of a non-manifold vertex gets its own copy of the vertex.
-void splitNonManifoldVertices(mrsv::TriangleMesh* mesh) {
-  const size_t n = mesh->positions.size();
-  std::vector<std::vector<uint32_t>> corners(n);
-  for (uint32_t t = 0; t < mesh->triangles.size(); ++t) {
-    for (uint32_t i = 0; i < 3; ++i) corners[mesh->triangles[t][i]].push_back(3 * t + i);
-  }
-  for (uint32_t v = 0; v < n; ++v) {
-    const auto& cs = corners[v];
-    std::vector<size_t> parent(cs.size());
-    for (size_t i = 0; i < cs.size(); ++i) parent[i] = i;
-    auto find = [&](size_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    std::map<uint32_t, size_t> by_neighbour;
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const Tri& t = mesh->triangles[cs[i] / 3];
-      for (uint32_t w : {t[(cs[i] + 1) % 3], t[(cs[i] + 2) % 3]}) {
-        auto [it, fresh] = by_neighbour.emplace(w, i);
-        if (!fresh) parent[find(i)] = find(it->second);
-      }
-    }
-    std::map<size_t, uint32_t> copy_of_root;
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const size_t root = find(i);
-      if (root == find(0)) continue;
-      auto it = copy_of_root.find(root);
-      if (it == copy_of_root.end()) {
-        mesh->positions.push_back(mesh->positions[v]);
-        it = copy_of_root.emplace(root, static_cast<uint32_t>(mesh->positions.size() - 1)).first;
-      }
-      mesh->triangles[cs[i] / 3][cs[i] % 3] = it->second;
-    }
-  }
-}
 
 // ------------------------------------------------------------ distance --
 
@@ -426,13 +250,14 @@ int main(int argc, char** argv) {
               "ms", "Mcoll/s", "batch", "hausdorff", "rms");
   for (const std::string& path : files) {
     mrsv::TriangleMesh mesh;
-    const bool ok = path.size() > 4 && path.substr(path.size() - 4) == ".ply" ? readPly(path, &mesh)
-                                                                               : readObj(path, &mesh);
-    if (!ok || mesh.triangles.empty()) {
-      std::fprintf(stderr, "cannot read %s\n", path.c_str());
+    std::string error;
+    mrsv::MeshRepairReport report;
+    std::vector<uint32_t> origin;
+    if (!mrsv::readMeshFile(path, "", &mesh, &error) ||
+        !mrsv::repairMesh(&mesh, mrsv::MeshRepairOptions{}, &report, &origin, &error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
       return 1;
     }
-    splitNonManifoldVertices(&mesh);
     std::string name = path.substr(path.find_last_of('/') + 1);
     name = name.substr(0, name.find('_'));
     Vec3 lo = mesh.positions[mesh.triangles[0][0]], hi = lo;

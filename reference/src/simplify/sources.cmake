@@ -13,12 +13,12 @@ set(MRSV_SIMPLIFY_TESTS
 # This file is included before the libraries exist, so the target is added
 # when the top-level directory has been processed.
 function(mrsv_add_simplify_bench)
-  if(MRSV_DECODER_ONLY OR NOT TARGET mrsv_encode OR NOT TARGET CGAL::CGAL)
+  if(MRSV_DECODER_ONLY OR NOT TARGET mrsv_encode OR NOT TARGET mrsv_io OR NOT TARGET CGAL::CGAL)
     return()
   endif()
   add_executable(simplify_bench tools/bench/simplify_bench.cpp)
   target_include_directories(simplify_bench PRIVATE reference/src)
-  target_link_libraries(simplify_bench PRIVATE mrsv_encode CGAL::CGAL)
+  target_link_libraries(simplify_bench PRIVATE mrsv_encode mrsv_io CGAL::CGAL)
 endfunction()
 # (DEFER needs CMake 3.19; older ones simply build no bench.)
 if(NOT MRSV_DECODER_ONLY AND CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)
