@@ -8,14 +8,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <random>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "mrsv/mesh_formats.h"
+#include "mrsv/mesh_repair.h"
 #include "simplify/edge_topology.h"
 #include "simplify/simplify.h"
 
@@ -28,76 +28,17 @@ constexpr uint32_t kNoVertex = 0xffffffffu;
 
 // ---------------------------------------------------------------- inputs --
 
-// Just enough OBJ for the shared meshes ("v x y z", "f a b c", 1-based,
-// optional /vt/vn parts) until the mesh readers are merged.
-TriangleMesh loadObj(const std::string& path) {
+// A shared mesh, read and repaired the way the PM encoder's input is (the cow
+// has a vertex where two fans touch; repair splits it).
+TriangleMesh loadShared(const std::string& name) {
   TriangleMesh mesh;
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << "cannot open " << path;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream s(line);
-    std::string tag;
-    s >> tag;
-    if (tag == "v") {
-      Vec3 p;
-      s >> p[0] >> p[1] >> p[2];
-      mesh.positions.push_back(p);
-    } else if (tag == "f") {
-      std::vector<uint32_t> corners;
-      std::string item;
-      while (s >> item) corners.push_back(static_cast<uint32_t>(std::stoul(item)) - 1);
-      for (size_t i = 1; i + 1 < corners.size(); ++i) {
-        mesh.triangles.push_back({corners[0], corners[i], corners[i + 1]});
-      }
-    }
-  }
+  std::string error;
+  EXPECT_TRUE(readMeshFile(std::string(MRSV_SHARED_DATA) + "/surface/" + name, "", &mesh, &error))
+      << error;
+  MeshRepairReport report;
+  std::vector<uint32_t> origin;
+  EXPECT_TRUE(repairMesh(&mesh, MeshRepairOptions{}, &report, &origin, &error)) << error;
   return mesh;
-}
-
-// Gives every extra fan of a non-manifold vertex (two cones touching at their
-// tips, as in the cow) its own copy of the vertex: the simplifier takes
-// manifolds only, and this is what mesh repair does before it.
-void splitNonManifoldVertices(TriangleMesh* mesh) {
-  const size_t n = mesh->positions.size();
-  std::vector<std::vector<uint32_t>> corners(n);  // 3 t + i
-  for (uint32_t t = 0; t < mesh->triangles.size(); ++t) {
-    for (uint32_t i = 0; i < 3; ++i) corners[mesh->triangles[t][i]].push_back(3 * t + i);
-  }
-  for (uint32_t v = 0; v < n; ++v) {
-    const auto& cs = corners[v];
-    // Union-find over v's corners: two corners share a fan when their
-    // triangles share an edge at v.
-    std::vector<size_t> parent(cs.size());
-    for (size_t i = 0; i < cs.size(); ++i) parent[i] = i;
-    auto find = [&](size_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    std::map<uint32_t, size_t> by_neighbour;
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const Tri& t = mesh->triangles[cs[i] / 3];
-      for (uint32_t w : {t[(cs[i] + 1) % 3], t[(cs[i] + 2) % 3]}) {
-        auto [it, fresh] = by_neighbour.emplace(w, i);
-        if (!fresh) parent[find(i)] = find(it->second);
-      }
-    }
-    std::map<size_t, uint32_t> copy_of_root;
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const size_t root = find(i);
-      if (root == find(0)) continue;
-      auto it = copy_of_root.find(root);
-      if (it == copy_of_root.end()) {
-        mesh->positions.push_back(mesh->positions[v]);
-        it = copy_of_root.emplace(root, static_cast<uint32_t>(mesh->positions.size() - 1)).first;
-      }
-      mesh->triangles[cs[i] / 3][cs[i] % 3] = it->second;
-    }
-  }
-}
-
-std::string sharedSurface(const std::string& name) {
-  return std::string(MRSV_SHARED_DATA) + "/surface/" + name;
 }
 
 // A bumpy n x n vertex grid: one boundary loop.
@@ -619,12 +560,8 @@ struct Case {
 TriangleMesh makeGrid() { return grid(24); }
 TriangleMesh makeCylinder() { return cylinder(32, 14); }
 TriangleMesh makeSphere() { return sphere(3); }
-TriangleMesh makeCow() {
-  TriangleMesh mesh = loadObj(sharedSurface("cow_viewpoint_2903v_5804tri.obj"));
-  splitNonManifoldVertices(&mesh);
-  return mesh;
-}
-TriangleMesh makeFandisk() { return loadObj(sharedSurface("fandisk_6475v_12946tri.obj")); }
+TriangleMesh makeCow() { return loadShared("cow_viewpoint_2903v_5804tri.obj"); }
+TriangleMesh makeFandisk() { return loadShared("fandisk_6475v_12946tri.obj"); }
 
 class SimplifyReplay
     : public ::testing::TestWithParam<std::tuple<Case, CollapseCost, Placement, int>> {};

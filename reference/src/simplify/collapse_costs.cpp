@@ -47,6 +47,21 @@ bool Quadric::minimizer(Vec3* out) const {
   return std::isfinite((*out)[0]) && std::isfinite((*out)[1]) && std::isfinite((*out)[2]);
 }
 
+Vec3 Quadric::segmentMinimizer(const Vec3& a, const Vec3& b) const {
+  // e(a + t (b - a)) = alpha t^2 + beta t + f0, from its values at 0, 1/2, 1.
+  const double f0 = evaluate(a);
+  const double f1 = evaluate(b);
+  const Vec3 mid = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+  const double fh = evaluate(mid);
+  const double alpha = 2.0 * (f0 + f1 - 2.0 * fh);
+  const double beta = 4.0 * fh - 3.0 * f0 - f1;
+  if (!(alpha > 0.0)) return f0 <= f1 ? a : b;
+  const double t = std::fmin(1.0, std::fmax(0.0, -beta / (2.0 * alpha)));
+  if (t == 0.0) return a;
+  if (t == 1.0) return b;
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
 void buildQuadrics(const EdgeTopology& topo, const std::vector<Vec3>& positions,
                    double boundary_weight, std::vector<Quadric>* quadrics) {
   quadrics->assign(topo.numVertices(), Quadric{});

@@ -31,6 +31,10 @@ struct Quadric {
   // (det >= kConditionLimit * (trace / 3)^3, i.e. the planes pin all three
   // directions down); false otherwise (flat or cylindrical neighbourhoods).
   bool minimizer(Vec3* out) const;
+  // The point of least error on the segment [a, b] (the fallback when the
+  // minimiser is unusable: along a cylinder, say, it still finds the best
+  // point of the edge, not just the best of its ends and middle).
+  Vec3 segmentMinimizer(const Vec3& a, const Vec3& b) const;
 };
 
 // Area-weighted plane quadrics of every vertex, plus for every boundary edge

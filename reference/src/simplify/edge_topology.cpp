@@ -35,33 +35,36 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
   std::vector<uint32_t> first(num_vertices + 1, 0);
   for (uint32_t v : corner_) ++first[v + 1];
   for (size_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
-  std::vector<uint32_t> by_origin(corner_.size());
+  // (target, half-edge) pairs by origin, so the scans below stay within two
+  // short contiguous lists instead of chasing corner_.
+  std::vector<std::pair<uint32_t, uint32_t>> by_origin(corner_.size());
   {
     std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    for (uint32_t h = 0; h < corner_.size(); ++h) by_origin[fill[corner_[h]]++] = h;
+    for (uint32_t h = 0; h < corner_.size(); ++h) by_origin[fill[corner_[h]]++] = {target(h), h};
   }
-  for (uint32_t h = 0; h < corner_.size(); ++h) {
-    const uint32_t u = corner_[h];
-    const uint32_t w = target(h);
+  for (uint32_t u = 0; u < num_vertices; ++u) {
     for (uint32_t k = first[u]; k < first[u + 1]; ++k) {
-      const uint32_t g = by_origin[k];
-      if (g != h && target(g) == w) {
-        *error = "edge " + std::to_string(u) + "-" + std::to_string(w) +
-                 " is used twice in the same direction (inconsistent orientation or non-manifold edge)";
-        return false;
+      const auto [w, h] = by_origin[k];
+      for (uint32_t j = first[u]; j < k; ++j) {
+        if (by_origin[j].first == w) {
+          *error = "edge " + std::to_string(u) + "-" + std::to_string(w) +
+                   " is used twice in the same direction (inconsistent orientation or non-manifold edge)";
+          return false;
+        }
       }
-    }
-    for (uint32_t k = first[w]; k < first[w + 1]; ++k) {
-      const uint32_t g = by_origin[k];
-      if (target(g) == u) {
-        opposite_[h] = g;
-        break;
+      for (uint32_t j = first[w]; j < first[w + 1]; ++j) {
+        if (by_origin[j].first == u) {
+          opposite_[h] = by_origin[j].second;
+          break;
+        }
       }
     }
   }
+  boundary_.assign(num_vertices, 0);
   for (uint32_t v = 0; v < num_vertices; ++v) {
     if (first[v] == first[v + 1]) continue;  // unused vertex: stays dead
-    settleOutgoing(v, by_origin[first[v]]);
+    settleOutgoing(v, by_origin[first[v]].second);
+    boundary_[v] = opposite_[outgoing_[v]] == kNone;
     uint32_t fan = 0;
     forEachOutgoing(v, [&](uint32_t) { ++fan; });
     if (fan != first[v + 1] - first[v]) {
@@ -209,8 +212,8 @@ bool EdgeTopology::validate(std::string* error) const {
       *error = "vertex " + std::to_string(v) + " has more than one fan";
       return false;
     }
-    if (boundary_seen && !onBoundary(v)) {
-      *error = "boundary vertex " + std::to_string(v) + " does not start its fan at the boundary";
+    if (boundary_seen != (opposite_[outgoing_[v]] == kNone) || boundary_seen != (boundary_[v] != 0)) {
+      *error = "vertex " + std::to_string(v) + " has a stale boundary flag or does not start its fan at the boundary";
       return false;
     }
     neighbours.clear();

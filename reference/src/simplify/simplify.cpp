@@ -1,20 +1,23 @@
-// The simplifier's driver: a priority queue of candidate collapses, grouped
-// into batches of independent collapses (spec 6.9).
+// The simplifier's driver: candidate collapses in cost order, grouped into
+// batches of independent collapses (spec 6.9).
 //
-// Every edge has one queue entry for its cheaper allowed direction. Entries
-// are never updated in place: a collapse bumps the version of the vertices
-// whose cost inputs changed and pushes fresh entries; an entry whose versions
-// no longer match is skipped when popped (lazy deletion). Consistency is
-// checked when an entry is popped, since it depends on the neighbourhood as it
-// is then; an entry that fails tries the other direction once and is
-// otherwise dropped until a collapse next to it pushes the edge again, or the
-// queue runs dry and is rebuilt from all edges.
+// Every edge keeps one candidate, the cheaper of its two directions that the
+// boundary rules allow and that has not failed the consistency checks, with
+// its cost. A collapse recomputes the candidates of the edges whose cost
+// inputs changed (those around the kept vertex), so no candidate is ever
+// stale. A direction that fails the checks is not tried again until a
+// collapse changes the neighbourhood of one of the edge's endpoints, which is
+// when its outcome can change.
 //
-// A batch pops candidates in cost order. Accepting a collapse locks both
-// endpoints and all their neighbours; a popped candidate touching a locked
-// vertex waits for the next batch. Unlocked vertices keep their
-// neighbourhood through the batch, so the accepted collapses satisfy the
-// independence rule of SimplifyResult by construction.
+// A batch is one pass in cost order: every candidate up to batch_cost_ratio
+// times the cheapest one is sorted, then taken in order unless an endpoint
+// is locked. Accepting a collapse locks both endpoints and all their
+// neighbours. Unlocked vertices keep their neighbourhood through the batch,
+// so the accepted collapses satisfy the independence rule of SimplifyResult
+// by construction, and candidates that touch a locked vertex simply wait for
+// the next batch. Sorting per batch, rather than keeping a global heap, is
+// what makes it fast: a heap pays O(log n) cache misses for every stale,
+// locked or recomputed entry, and batches have plenty of those.
 #include "simplify/simplify.h"
 
 #include <algorithm>
@@ -41,64 +44,79 @@ using simplify::Vec3;
 constexpr double kBoundaryWeight = 100.0;
 // How often (in collapses) the clock and the progress callback are consulted.
 constexpr uint32_t kCheckInterval = 1024;
+// Direction of an edge's candidate: which end of its canonical half-edge goes.
+constexpr uint8_t kOriginGoes = 0;
+constexpr uint8_t kTargetGoes = 1;
+constexpr uint8_t kNoDirection = 2;
 
-struct Candidate {
+struct Entry {
   double cost;
-  uint32_t h;        // a half-edge of the edge when the entry was made
-  uint32_t removed;
-  uint32_t kept;
-  uint32_t version;  // version[removed] + version[kept] then; versions only grow
-  bool second_choice;
+  uint32_t h;  // the edge's canonical half-edge
 };
 
-// Min-heap order with a total tie-break, so the result never depends on the
-// heap's internals.
-struct LaterCandidate {
-  bool operator()(const Candidate& a, const Candidate& b) const {
-    if (a.cost != b.cost) return a.cost > b.cost;
-    if (a.h != b.h) return a.h > b.h;
-    return a.removed > b.removed;
-  }
-};
+inline bool cheaper(const Entry& a, const Entry& b) {
+  // A total order, so the result never depends on the sort's internals.
+  return a.cost < b.cost || (a.cost == b.cost && a.h < b.h);
+}
 
 class Simplifier {
  public:
-  Simplifier(const SimplifyOptions& options) : options_(options) {}
+  explicit Simplifier(const SimplifyOptions& options) : options_(options) {}
 
   bool init(const TriangleMesh& mesh, std::string* error);
   void run(SimplifyResult* result);
 
  private:
-  bool evaluate(uint32_t removed, uint32_t kept, uint32_t h, double* cost, Vec3* position) const;
-  void pushEdge(uint32_t h, std::vector<Candidate>* out);
-  void pushEdgesAround(uint32_t v, std::vector<Candidate>* out);
-  void pushHeap(const Candidate& c) {
-    heap_.push_back(c);
-    std::push_heap(heap_.begin(), heap_.end(), LaterCandidate());
+  // The canonical half-edge of h's edge: the lower index of the pair.
+  uint32_t canonical(uint32_t h) const {
+    const uint32_t o = topo_.opposite(h);
+    return o != kNone && o < h ? o : h;
   }
-  bool fresh(const Candidate& c) const {
-    return topo_.alive(c.removed) && topo_.alive(c.kept) &&
-           version_[c.removed] + version_[c.kept] == c.version;
+  // Where the kept vertex goes; true if that is not where it is.
+  bool place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* position) const;
+  double cost(uint32_t removed, uint32_t kept, const Vec3& position, bool moves) const;
+  // Picks the cheaper direction of canonical half-edge h among those allowed
+  // and not yet failed.
+  void chooseDirection(uint32_t h);
+  void refreshEdge(uint32_t h) {
+    failed_[h] = 0;
+    chooseDirection(h);
   }
-  uint32_t currentHalfEdge(const Candidate& c) const;
-  void rebuildHeap();
-  void lockNeighbourhood(uint32_t v, uint32_t batch);
+  void refreshEdgesAround(uint32_t v);
+  // Tries the current candidate of edge h; on failure marks the direction and
+  // returns false.
+  bool consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* position);
+  void lockNeighbourhood(uint32_t v);
 
   const SimplifyOptions& options_;
   EdgeTopology topo_;
   std::vector<Vec3> positions_;
   std::vector<Quadric> quadrics_;
   std::vector<Vec3> normals_;  // CollapseCost::kPaper only
-  std::vector<uint32_t> version_;
-  std::vector<uint32_t> locked_in_batch_;  // batch number + 1 that locked the vertex
-  std::vector<Candidate> heap_;
-  std::vector<Candidate> deferred_;
+  // Per canonical half-edge: the candidate, and which directions failed the
+  // checks (bit d for direction d) after how many collapses.
+  std::vector<double> edge_cost_;
+  std::vector<uint8_t> direction_;
+  std::vector<uint8_t> failed_;
+  std::vector<uint32_t> failed_at_;
+  // Per vertex: the batch that last locked it, and the number of collapses
+  // made when its neighbourhood last changed.
+  std::vector<uint32_t> locked_in_batch_;
+  std::vector<uint32_t> changed_at_;
+  // The canonical half-edges of the live edges, with listed_ marking them. An
+  // edge whose canonical half-edge changes is one around a kept vertex, and
+  // gets its new one appended; the list drops stale entries every batch.
+  std::vector<uint32_t> edges_;
+  std::vector<uint8_t> listed_;
+  std::vector<Entry> pool_;
   std::vector<uint32_t> scratch_;
   simplify::VertexMarks marks_;
   simplify::GeometryLimits limits_;
   simplify::PaperWeights paper_;
   double cost_floor_ = 0.0;
   uint64_t live_vertices_ = 0;
+  uint32_t batch_number_ = 0;
+  uint32_t collapses_ = 0;
 };
 
 bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
@@ -111,16 +129,16 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
     }
   }
   const uint32_t nv = topo_.numVertices();
-  version_.assign(nv, 0);
+  const size_t nh = 3 * static_cast<size_t>(topo_.numTriangles());
   locked_in_batch_.assign(nv, 0);
+  changed_at_.assign(nv, 0);
   marks_.resize(nv);
   for (uint32_t v = 0; v < nv; ++v) live_vertices_ += topo_.alive(v);
 
   double length_sum = 0.0;
   uint64_t edges = 0;
-  for (uint32_t h = 0; h < 3 * topo_.numTriangles(); ++h) {
-    const uint32_t o = topo_.opposite(h);
-    if (o != kNone && o < h) continue;
+  for (uint32_t h = 0; h < nh; ++h) {
+    if (canonical(h) != h) continue;
     const Vec3& a = positions_[topo_.vertexOf(h)];
     const Vec3& b = positions_[topo_.target(h)];
     length_sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
@@ -146,109 +164,119 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
     // Quadric errors are area times squared distance: unit^4.
     cost_floor_ = 1e-12 * unit * unit * unit * unit;
   }
+
+  edge_cost_.assign(nh, 0.0);
+  direction_.assign(nh, kNoDirection);
+  failed_.assign(nh, 0);
+  failed_at_.assign(nh, 0);
+  listed_.assign(nh, 0);
+  for (uint32_t h = 0; h < nh; ++h) {
+    if (canonical(h) == h) {
+      edges_.push_back(h);
+      listed_[h] = 1;
+      chooseDirection(h);
+    }
+  }
   return true;
 }
 
-bool Simplifier::evaluate(uint32_t removed, uint32_t kept, uint32_t h, double* cost,
-                          Vec3* position) const {
+bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* position) const {
   const Vec3& pk = positions_[kept];
-  bool kept_moves = false;
   if (options_.placement == Placement::kEndpoint) {
     *position = pk;
+    return false;
+  }
+  Quadric q = quadrics_[removed];
+  q.add(quadrics_[kept]);
+  const Vec3& pr = positions_[removed];
+  if (topo_.edgeOnBoundary(h)) {
+    // A boundary vertex only ever takes the place of another one, so that
+    // the boundary vertices stay exactly on the input's boundary (a point
+    // between them would be on a chord of it).
+    *position = q.evaluate(pr) < q.evaluate(pk) ? pr : pk;
+  } else if (topo_.onBoundary(kept)) {
+    *position = pk;  // a boundary vertex only moves along a boundary edge
   } else {
-    Quadric q = quadrics_[removed];
-    q.add(quadrics_[kept]);
-    const Vec3& pr = positions_[removed];
-    if (topo_.edgeOnBoundary(h)) {
-      // A boundary vertex only ever takes the place of another one, so that
-      // the boundary vertices stay exactly on the input's boundary (a point
-      // between them would be on a chord of it).
-      *position = q.evaluate(pr) < q.evaluate(pk) ? pr : pk;
-    } else if (topo_.onBoundary(kept)) {
-      *position = pk;  // a boundary vertex only moves along a boundary edge
+    const Vec3 mid = {0.5 * (pr[0] + pk[0]), 0.5 * (pr[1] + pk[1]), 0.5 * (pr[2] + pk[2])};
+    // The optimum is used only near the edge (within one edge length of its
+    // midpoint); a far optimum comes from nearly parallel planes.
+    const double len2 = (pr[0] - pk[0]) * (pr[0] - pk[0]) + (pr[1] - pk[1]) * (pr[1] - pk[1]) +
+                        (pr[2] - pk[2]) * (pr[2] - pk[2]);
+    Vec3 x;
+    if (q.minimizer(&x) && (x[0] - mid[0]) * (x[0] - mid[0]) + (x[1] - mid[1]) * (x[1] - mid[1]) +
+                                   (x[2] - mid[2]) * (x[2] - mid[2]) <=
+                               len2) {
+      *position = x;
     } else {
-      const Vec3 mid = {0.5 * (pr[0] + pk[0]), 0.5 * (pr[1] + pk[1]), 0.5 * (pr[2] + pk[2])};
-      Vec3 x;
-      // The optimum is used only near the edge (within one edge length of its
-      // midpoint); a far optimum comes from nearly parallel planes.
-      const double len2 = (pr[0] - pk[0]) * (pr[0] - pk[0]) + (pr[1] - pk[1]) * (pr[1] - pk[1]) +
-                          (pr[2] - pk[2]) * (pr[2] - pk[2]);
-      if (q.minimizer(&x) && (x[0] - mid[0]) * (x[0] - mid[0]) + (x[1] - mid[1]) * (x[1] - mid[1]) +
-                                     (x[2] - mid[2]) * (x[2] - mid[2]) <=
-                                 len2) {
-        *position = x;
-      } else {
-        const double ek = q.evaluate(pk), er = q.evaluate(pr), em = q.evaluate(mid);
-        *position = ek <= er && ek <= em ? pk : (er <= em ? pr : mid);
-      }
+      *position = q.segmentMinimizer(pk, pr);
     }
-    kept_moves = *position != pk;
   }
-  if (options_.cost == CollapseCost::kQuadric) {
-    *cost = quadrics_[removed].evaluate(*position) + quadrics_[kept].evaluate(*position);
-  } else {
-    *cost = simplify::paperEnergy(topo_, positions_, normals_, removed, kept, *position, kept_moves,
-                                  paper_);
-  }
-  return kept_moves;
+  return *position != pk;
 }
 
-void Simplifier::pushEdge(uint32_t h, std::vector<Candidate>* out) {
+double Simplifier::cost(uint32_t removed, uint32_t kept, const Vec3& position, bool moves) const {
+  if (options_.cost == CollapseCost::kQuadric) {
+    return quadrics_[removed].evaluate(position) + quadrics_[kept].evaluate(position);
+  }
+  return simplify::paperEnergy(topo_, positions_, normals_, removed, kept, position, moves, paper_);
+}
+
+void Simplifier::chooseDirection(uint32_t h) {
   const uint32_t a = topo_.vertexOf(h);
   const uint32_t b = topo_.target(h);
-  Vec3 position;
-  Candidate best{};
-  bool have = false;
-  for (int dir = 0; dir < 2; ++dir) {
-    const uint32_t removed = dir == 0 ? a : b;
-    const uint32_t kept = dir == 0 ? b : a;
+  direction_[h] = kNoDirection;
+  for (uint8_t d : {kOriginGoes, kTargetGoes}) {
+    if (failed_[h] & (1u << d)) continue;
+    const uint32_t removed = d == kOriginGoes ? a : b;
+    const uint32_t kept = d == kOriginGoes ? b : a;
     if (!simplify::boundaryRuleAllows(topo_, removed, h)) continue;
-    double cost;
-    evaluate(removed, kept, h, &cost, &position);
-    if (!have || cost < best.cost) {
-      best = {cost, h, removed, kept, version_[removed] + version_[kept], false};
-      have = true;
+    Vec3 position;
+    const bool moves = place(removed, kept, h, &position);
+    const double c = cost(removed, kept, position, moves);
+    if (direction_[h] == kNoDirection || c < edge_cost_[h]) {
+      direction_[h] = d;
+      edge_cost_[h] = c;
     }
   }
-  if (have) out->push_back(best);
 }
 
-void Simplifier::pushEdgesAround(uint32_t v, std::vector<Candidate>* out) {
+void Simplifier::refreshEdgesAround(uint32_t v) {
   uint32_t last = kNone;
+  auto refresh = [&](uint32_t c) {
+    refreshEdge(c);
+    if (!listed_[c]) {
+      listed_[c] = 1;
+      edges_.push_back(c);
+    }
+  };
   topo_.forEachOutgoing(v, [&](uint32_t h) {
-    pushEdge(h, out);
+    refresh(canonical(h));
     last = h;
   });
   // The last edge of a boundary fan is reached only by its incoming half-edge.
   const uint32_t incoming = EdgeTopology::prev(last);
-  if (topo_.edgeOnBoundary(incoming)) pushEdge(incoming, out);
+  if (topo_.edgeOnBoundary(incoming)) refresh(incoming);
 }
 
-uint32_t Simplifier::currentHalfEdge(const Candidate& c) const {
-  const uint32_t h = c.h;
-  const uint32_t u = topo_.vertexOf(h);
-  if (u != kNone) {
-    const uint32_t w = topo_.target(h);
-    if ((u == c.removed && w == c.kept) || (u == c.kept && w == c.removed)) return h;
+bool Simplifier::consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* position) {
+  const bool moves = place(removed, kept, h, position);
+  if (simplify::linkConditionHolds(topo_, removed, kept, h, &marks_) &&
+      simplify::geometryAllows(topo_, positions_, removed, kept, *position, moves, limits_)) {
+    return true;
   }
-  const uint32_t g = topo_.findHalfEdge(c.removed, c.kept);
-  return g != kNone ? g : topo_.findHalfEdge(c.kept, c.removed);
+  failed_[h] |= static_cast<uint8_t>(1u << direction_[h]);
+  failed_at_[h] = collapses_;
+  chooseDirection(h);
+  return false;
 }
 
-void Simplifier::rebuildHeap() {
-  heap_.clear();
-  for (uint32_t h = 0; h < 3 * topo_.numTriangles(); ++h) {
-    if (topo_.vertexOf(h) == kNone) continue;
-    const uint32_t o = topo_.opposite(h);
-    if (o != kNone && o < h) continue;
-    pushEdge(h, &heap_);
-  }
-  std::make_heap(heap_.begin(), heap_.end(), LaterCandidate());
-}
-
-void Simplifier::lockNeighbourhood(uint32_t v, uint32_t batch) {
-  locked_in_batch_[v] = batch;
-  topo_.forEachNeighbour(v, [&](uint32_t w) { locked_in_batch_[w] = batch; });
+void Simplifier::lockNeighbourhood(uint32_t v) {
+  locked_in_batch_[v] = batch_number_;
+  changed_at_[v] = collapses_;
+  topo_.forEachNeighbour(v, [&](uint32_t w) {
+    locked_in_batch_[w] = batch_number_;
+    changed_at_[w] = collapses_;
+  });
 }
 
 void Simplifier::run(SimplifyResult* result) {
@@ -259,117 +287,108 @@ void Simplifier::run(SimplifyResult* result) {
   const double max_fraction = std::clamp(options_.batch_max_fraction, 0.0, 1.0);
   const auto start_time = std::chrono::steady_clock::now();
   const bool paper = options_.cost == CollapseCost::kPaper;
-
   auto report = [&](bool final) {
     if (!options_.progress) return;
-    if (final) {
-      options_.progress(1.0);
-      return;
-    }
     const double goal = static_cast<double>(start_triangles) - static_cast<double>(target);
     const double done = static_cast<double>(start_triangles - topo_.liveTriangles());
-    options_.progress(goal > 0.0 ? std::min(1.0, done / goal) : 1.0);
+    options_.progress(final || goal <= 0.0 ? 1.0 : std::min(1.0, done / goal));
   };
 
-  rebuildHeap();
-  bool rebuilt_without_progress = false;
   bool stop = topo_.liveTriangles() <= target;
-  uint64_t collapses = 0;
-  uint32_t batch_number = 0;
   std::vector<HalfEdgeCollapse> batch;
   while (!stop) {
-    ++batch_number;
+    ++batch_number_;
     batch.clear();
-    deferred_.clear();
     const uint64_t cap = std::max<uint64_t>(
         1, static_cast<uint64_t>(max_fraction * static_cast<double>(live_vertices_)));
-    double limit = std::numeric_limits<double>::infinity();
-    while (!heap_.empty() && !stop) {
-      std::pop_heap(heap_.begin(), heap_.end(), LaterCandidate());
-      const Candidate c = heap_.back();
-      heap_.pop_back();
-      if (!fresh(c)) continue;
-      if (locked_in_batch_[c.removed] == batch_number || locked_in_batch_[c.kept] == batch_number) {
-        deferred_.push_back(c);
-        continue;
-      }
-      if (c.cost > limit) {
-        pushHeap(c);
-        break;
-      }
-      const uint32_t h = currentHalfEdge(c);
-      Vec3 position;
-      double cost;
-      const bool kept_moves = evaluate(c.removed, c.kept, h, &cost, &position);
-      if (!simplify::linkConditionHolds(topo_, c.removed, c.kept, h, &marks_) ||
-          !simplify::geometryAllows(topo_, positions_, c.removed, c.kept, position, kept_moves,
-                                    limits_)) {
-        if (!c.second_choice && simplify::boundaryRuleAllows(topo_, c.kept, h)) {
-          Candidate other{0.0, h, c.kept, c.removed, c.version, true};
-          evaluate(other.removed, other.kept, h, &other.cost, &position);
-          pushHeap(other);
+    // Usually one round; another only when every candidate of a round failed
+    // the checks (those are then set aside, so the next round goes further).
+    while (batch.empty()) {
+      // Pass 1: drop dead edges from the list, retry failed directions whose
+      // neighbourhood changed, find the cheapest candidate.
+      double cheapest = std::numeric_limits<double>::infinity();
+      size_t kept_edges = 0;
+      for (size_t i = 0; i < edges_.size(); ++i) {
+        const uint32_t h = edges_[i];
+        const uint32_t a = topo_.vertexOf(h);
+        if (a == kNone || canonical(h) != h) {
+          listed_[h] = 0;
+          continue;
         }
-        continue;
-      }
-      if (batch.empty()) {
-        // The batch takes collapses up to `ratio` times its first one's cost
-        // (with costs near zero counted as cost_floor_, and negative costs of
-        // the paper's energies measured by their magnitude).
-        limit = c.cost + (ratio - 1.0) * std::max(std::fabs(c.cost), cost_floor_);
-      }
-
-      // The neighbourhoods as they are before the collapse: afterwards the
-      // kept vertex's neighbours are their union, so locking them afterwards
-      // would be the same set.
-      lockNeighbourhood(c.removed, batch_number);
-      lockNeighbourhood(c.kept, batch_number);
-      topo_.collapse(c.removed, c.kept, h);
-      positions_[c.kept] = position;
-      quadrics_[c.kept].add(quadrics_[c.removed]);
-      ++version_[c.removed];
-      ++version_[c.kept];
-      --live_vertices_;
-      batch.push_back({c.removed, c.kept, position});
-      ++collapses;
-
-      if (paper) {
-        // Normals change on the kept vertex and all its neighbours, and with
-        // them the costs of every edge around those.
-        scratch_.clear();
-        scratch_.push_back(c.kept);
-        topo_.forEachNeighbour(c.kept, [&](uint32_t w) { scratch_.push_back(w); });
-        for (uint32_t v : scratch_) {
-          normals_[v] = simplify::vertexNormal(topo_, positions_, v);
-          ++version_[v];
+        edges_[kept_edges++] = h;
+        if (failed_[h] != 0 &&
+            std::max(changed_at_[a], changed_at_[topo_.target(h)]) > failed_at_[h]) {
+          refreshEdge(h);  // the neighbourhood changed since the failure
         }
-        for (uint32_t v : scratch_) pushEdgesAround(v, &deferred_);
-      } else {
-        pushEdgesAround(c.kept, &deferred_);
+        if (direction_[h] != kNoDirection) cheapest = std::min(cheapest, edge_cost_[h]);
       }
+      edges_.resize(kept_edges);
+      if (cheapest == std::numeric_limits<double>::infinity()) break;
+      // The batch takes collapses up to `ratio` times the cheapest candidate's
+      // cost (costs near zero count as cost_floor_; negative costs of the
+      // paper's energies are measured by their magnitude).
+      const double limit = cheapest + (ratio - 1.0) * std::max(std::fabs(cheapest), cost_floor_);
+      // Pass 2: the candidates within the limit, in cost order.
+      pool_.clear();
+      for (uint32_t h : edges_) {
+        if (direction_[h] != kNoDirection && edge_cost_[h] <= limit) pool_.push_back({edge_cost_[h], h});
+      }
+      std::sort(pool_.begin(), pool_.end(), cheaper);
 
-      if (topo_.liveTriangles() <= target) stop = true;
-      if (batch.size() >= cap) break;
-      if (collapses % kCheckInterval == 0) {
-        report(false);
-        if (options_.time_budget_seconds > 0.0) {
-          const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start_time;
-          if (spent.count() >= options_.time_budget_seconds) stop = true;
+      for (const Entry& e : pool_) {
+        const uint32_t h = e.h;
+        const uint32_t a = topo_.vertexOf(h);
+        if (a == kNone) continue;  // died in this batch (its ends are locked)
+        const uint32_t b = topo_.target(h);
+        if (locked_in_batch_[a] == batch_number_ || locked_in_batch_[b] == batch_number_) continue;
+        Vec3 position;
+        uint32_t removed = 0, kept = 0;
+        bool ok = false;
+        // The candidate, and if it fails, the other direction if cheap enough.
+        for (int attempt = 0; attempt < 2 && !ok; ++attempt) {
+          if (direction_[h] == kNoDirection || edge_cost_[h] > limit) break;
+          removed = direction_[h] == kOriginGoes ? a : b;
+          kept = direction_[h] == kOriginGoes ? b : a;
+          ok = consistent(h, removed, kept, &position);
         }
+        if (!ok) continue;
+
+        // Lock the neighbourhoods as they are before the collapse (afterwards
+        // the kept vertex's neighbours are their union: the same set).
+        ++collapses_;
+        lockNeighbourhood(removed);
+        lockNeighbourhood(kept);
+        topo_.collapse(removed, kept, h);
+        positions_[kept] = position;
+        quadrics_[kept].add(quadrics_[removed]);
+        --live_vertices_;
+        batch.push_back({removed, kept, position});
+
+        if (paper) {
+          // Normals change on the kept vertex and all its neighbours, and with
+          // them the costs of every edge around those.
+          scratch_.clear();
+          scratch_.push_back(kept);
+          topo_.forEachNeighbour(kept, [&](uint32_t w) { scratch_.push_back(w); });
+          for (uint32_t v : scratch_) normals_[v] = simplify::vertexNormal(topo_, positions_, v);
+          for (uint32_t v : scratch_) refreshEdgesAround(v);
+        } else {
+          refreshEdgesAround(kept);
+        }
+
+        if (topo_.liveTriangles() <= target) stop = true;
+        if (collapses_ % kCheckInterval == 0) {
+          report(false);
+          if (options_.time_budget_seconds > 0.0) {
+            const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start_time;
+            if (spent.count() >= options_.time_budget_seconds) stop = true;
+          }
+        }
+        if (stop || batch.size() >= cap) break;
       }
     }
-    for (const Candidate& c : deferred_) {
-      if (fresh(c)) pushHeap(c);
-    }
-    if (!batch.empty()) {
-      result->batches.push_back(batch);
-      rebuilt_without_progress = false;
-      continue;
-    }
-    // Nothing was collapsible: entries dropped as inconsistent may have
-    // become consistent since, so look at every edge once more before giving up.
-    if (stop || rebuilt_without_progress) break;
-    rebuildHeap();
-    rebuilt_without_progress = true;
+    if (batch.empty()) break;  // no consistent collapse is left
+    result->batches.push_back(batch);
   }
   result->final_triangles = topo_.liveTriangles();
   result->final_vertices = live_vertices_;

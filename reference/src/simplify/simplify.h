@@ -45,11 +45,16 @@ struct SimplifyOptions {
   // Called now and then with the fraction done, in [0, 1].
   std::function<void(double)> progress;
   // The batch rule: a batch takes, cheapest first, the consistent collapses
-  // whose endpoints no earlier collapse of the batch has locked, as long as
-  // their cost is at most batch_cost_ratio times the cost of the batch's first
-  // collapse, and at most batch_max_fraction of the live vertices. Larger
-  // batches make the stream smaller; greedier ones make the result worse.
-  double batch_cost_ratio = 4.0;
+  // whose endpoints no earlier collapse of the batch has locked (locking both
+  // endpoints and all their neighbours), as long as their cost is at most
+  // batch_cost_ratio times the cheapest candidate's cost, and at most
+  // batch_max_fraction of the live vertices. Larger batches make the stream
+  // smaller; greedier ones make the result worse. Measured on cow, fandisk and
+  // armadillo at 10 % and 1 %: ratios 2 to 16 give the same RMS error within
+  // +-5 %, pure greedy (no ratio) 39 % more; 8 needs 55 % fewer batches than
+  // 2. Each batch scans all live edges, so a ratio near 1 (batches of one or
+  // two collapses) makes the run quadratic.
+  double batch_cost_ratio = 8.0;
   double batch_max_fraction = 1.0;
 };
 

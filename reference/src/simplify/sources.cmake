@@ -8,3 +8,19 @@ set(MRSV_SIMPLIFY_SOURCES
   reference/src/simplify/simplify.cpp)
 set(MRSV_SIMPLIFY_TESTS
   reference/tests/simplify_test.cpp)
+
+# tools/bench/simplify_bench: speed and quality against CGAL's Lindstrom-Turk.
+# This file is included before the libraries exist, so the target is added
+# when the top-level directory has been processed.
+function(mrsv_add_simplify_bench)
+  if(MRSV_DECODER_ONLY OR NOT TARGET mrsv_encode OR NOT TARGET mrsv_io OR NOT TARGET CGAL::CGAL)
+    return()
+  endif()
+  add_executable(simplify_bench tools/bench/simplify_bench.cpp)
+  target_include_directories(simplify_bench PRIVATE reference/src)
+  target_link_libraries(simplify_bench PRIVATE mrsv_encode mrsv_io CGAL::CGAL)
+endfunction()
+# (DEFER needs CMake 3.19; older ones simply build no bench.)
+if(NOT MRSV_DECODER_ONLY AND CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)
+  cmake_language(DEFER CALL mrsv_add_simplify_bench)
+endif()
