@@ -85,12 +85,14 @@ struct PmContexts {
   IntegerModels base_back_reference;
 
   IntegerModels gap;
-  IntegerModels turn[kTurnContexts];  // interior rings, by min(d, 15)
+  IntegerModels arc_start[kTurnContexts];  // interior rings, by min(d, 15)
+  IntegerModels turn[kTurnContexts];       // interior rings, by min(d, 15)
   BitModel boundary_kind[2];
   IntegerModels fan_faces;            // faces vt takes at a boundary edge
   IntegerModels fan_interior;         // b - a - 1 of a boundary vertex split inside its fan
   IntegerModels vs_move[3];
-  IntegerModels position[3];
+  IntegerModels tangent_position[2];  // vt's two axes predicted by the centroid
+  IntegerModels normal_position;      // vt's axis predicted by the plane
   IntegerModels scalar;
 };
 

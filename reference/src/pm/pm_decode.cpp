@@ -80,11 +80,10 @@ Error decodeChunks(DecodedMesh* out) {
       if (!rc.validStart())
         return Error{Status::kBadEntropyPayload, at + 4, "PSPL", "coded data must start with a 0 byte"};
       DecodingCoder coder{&rc};
-      const uint32_t batch_start = s.table.vertexCount();
-      int64_t prev_vs = -1;
+      BatchCursor cursor = s.beginBatch();
       for (uint32_t k = 0; k < split_count; ++k) {
         SplitRecord record;
-        std::string problem = pm::codeSplit(coder, ctx, s, batch_start, &prev_vs, &record);
+        std::string problem = pm::codeSplit(coder, ctx, s, &cursor, &record);
         if (!problem.empty()) {
           Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
           return Error{status, at + 4, "PSPL.vertex_split",

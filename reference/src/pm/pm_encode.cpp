@@ -212,8 +212,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
     ByteWriter(&payload).u32(static_cast<uint32_t>(batch.size()));
     RangeEncoder rc(&payload);
     EncodingCoder coder{&rc};
-    const uint32_t batch_start = s.table.vertexCount();
-    int64_t prev_vs = -1;
+    BatchCursor cursor = s.beginBatch();
     CornerTable::Ring ring;
     for (const ReplayedCollapse& c : batch) {
       SplitRecord record;
@@ -237,7 +236,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
       record.vt_position = c.removed_position;
       for (int k = 0; k < 3; ++k) record.vs_move[k] = c.kept_position_before[k] - s.positions[record.vs][k];
       record.vt_scalar = c.removed_scalar;
-      std::string problem = pm::codeSplit(coder, ctx, s, batch_start, &prev_vs, &record);
+      std::string problem = pm::codeSplit(coder, ctx, s, &cursor, &record);
       if (!problem.empty()) {
         *error = "split of vertex " + std::to_string(record.vs) + ": " + problem;
         return false;

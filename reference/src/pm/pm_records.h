@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <string>
 
 #include "mrsv/limits.h"
@@ -78,29 +79,123 @@ std::string codeBaseMesh(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s
   return "";
 }
 
-// spec 6.7: one vertex split. `prev_vs` is the previous split vertex of this
-// batch (or -1), `batch_start` the vertex count when the batch began.
+// Floor division for a positive divisor (C++ rounds toward zero).
+inline int64_t floorDivide(int64_t num, int64_t den) {
+  int64_t q = num / den;
+  return (num % den != 0 && num < 0) ? q - 1 : q;
+}
+
+// spec 6.7.3: the sum over vt's faces taken from vs, F_a .. F_(a + count - 3),
+// of (w_i - vs) x (w_i+1 - vs), from differences reduced to 20 bits, then
+// halved (rounding down) until every component is below 2^30, so that no
+// product of the prediction exceeds 62 bits.
+inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>>& positions,
+                                        const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring,
+                                        uint32_t a, uint32_t count, int position_bits) {
+  const int drop = position_bits > 20 ? position_bits - 20 : 0;
+  const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
+  const auto edge = [&](uint32_t i, int k) {
+    return floorDivide(int64_t{positions[ring.neighbours[(a + i) % d]][k]} - vs[k], int64_t{1} << drop);
+  };
+  std::array<int64_t, 3> n{0, 0, 0};
+  for (uint32_t i = 0; i + 2 < count; ++i) {
+    const int64_t e0[3] = {edge(i, 0), edge(i, 1), edge(i, 2)};
+    const int64_t e1[3] = {edge(i + 1, 0), edge(i + 1, 1), edge(i + 1, 2)};
+    n[0] += e0[1] * e1[2] - e0[2] * e1[1];
+    n[1] += e0[2] * e1[0] - e0[0] * e1[2];
+    n[2] += e0[0] * e1[1] - e0[1] * e1[0];
+  }
+  while (std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])}) >= (int64_t{1} << 30))
+    for (int64_t& c : n) c = floorDivide(c, 2);
+  return n;
+}
+
+// One coordinate of vt: `predicted` plus a signed residual, in [0, 2^bits).
 template <class Coder>
-std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, uint32_t batch_start,
-                      int64_t* prev_vs, SplitRecord* r) {
+bool codePosition(Coder& coder, IntegerModels& m, int32_t predicted, int bits, int32_t* value) {
+  int32_t residual = *value - predicted;
+  if (!codeSigned(coder, m, &residual)) return false;
+  const int64_t q = int64_t{predicted} + residual;
+  if (q < 0 || q >= (int64_t{1} << bits)) return false;
+  *value = static_cast<int32_t>(q);
+  return true;
+}
+
+// spec 6.7.2: the face F_i of an interior ring with the largest
+// |w_i - vs|^2 + |w_i+1 - vs|^2 (the first such i); at most 62 bits.
+inline uint32_t widestFace(const std::vector<std::array<int32_t, 3>>& positions,
+                           const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring) {
+  const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
+  const auto squared = [&](uint32_t i) {
+    int64_t sum = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int64_t e = int64_t{positions[ring.neighbours[i % d]][k]} - vs[k];
+      sum += e * e;
+    }
+    return sum;
+  };
+  uint32_t widest = 0;
+  int64_t best = -1, previous = squared(0);
+  for (uint32_t i = 0; i < d; ++i) {
+    const int64_t next = squared(i + 1);
+    if (previous + next > best) best = previous + next, widest = i;
+    previous = next;
+  }
+  return widest;
+}
+
+// spec 6.7: one vertex split of the batch at `batch`.
+template <class Coder>
+std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, BatchCursor* batch,
+                      SplitRecord* r) {
   const PmHeader& h = s.header;
-  uint32_t gap = Coder::kEncoding ? static_cast<uint32_t>(r->vs - (*prev_vs + 1)) : 0;
+  // spec 6.7.1: vs is the (gap + 1)-th vertex after prev_vs that is not locked.
+  std::vector<uint32_t>& locked = s.locked_ahead;
+  const auto pop_smallest = [&locked] {
+    std::pop_heap(locked.begin(), locked.end(), std::greater<>());
+    locked.pop_back();
+  };
+  uint32_t gap = 0;
+  if (Coder::kEncoding) {
+    uint32_t skipped = 0;
+    for (; !locked.empty() && locked.front() < r->vs; pop_smallest()) ++skipped;
+    if (!locked.empty() && locked.front() == r->vs)
+      return "split vertex " + std::to_string(r->vs) + " neighbours an earlier split of its batch";
+    gap = static_cast<uint32_t>(r->vs - (batch->prev_vs + 1)) - skipped;
+  }
   if (!codeUnsigned(coder, ctx.gap, &gap)) return "the vertex gap is too long";
-  const int64_t vs = *prev_vs + 1 + int64_t{gap};
-  if (vs >= batch_start)
+  int64_t vs = Coder::kEncoding ? int64_t{r->vs} : batch->prev_vs + 1 + int64_t{gap};
+  if (!Coder::kEncoding)
+    for (; !locked.empty() && locked.front() <= vs; pop_smallest()) ++vs;
+  if (vs >= batch->start)
     return "split vertex " + std::to_string(vs) + " is not a vertex of the mesh at the start of the batch (" +
-           std::to_string(batch_start) + " vertices)";
+           std::to_string(batch->start) + " vertices)";
   r->vs = static_cast<uint32_t>(vs);
-  *prev_vs = vs;
+  batch->prev_vs = vs;
   CornerTable::Ring& ring = s.ring;
   s.table.ring(r->vs, &ring);
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
   if (d > kMaxRingSize)
     return "split vertex " + std::to_string(vs) + " has " + std::to_string(d) +
            " neighbours, more than 1024";
+  for (uint32_t w : ring.neighbours)
+    if (w > r->vs && w < batch->start && s.lock_stamp[w] != batch->stamp) {
+      s.lock_stamp[w] = batch->stamp;
+      locked.push_back(w);
+      std::push_heap(locked.begin(), locked.end(), std::greater<>());
+    }
   // spec 6.7.2 ring positions.
   if (!ring.boundary) {
-    r->a = codeTruncated(coder, d, r->a);
+    // vt's old faces are the stretched ones after its collapse: a is coded
+    // as its distance back from the face whose corners lie farthest from vs.
+    const uint32_t widest = widestFace(s.positions, s.positions[r->vs], ring);
+    uint32_t back = Coder::kEncoding ? (widest + d - r->a) % d : 0;
+    if (!codeUnsigned(coder, ctx.arc_start[std::min<uint32_t>(d, kTurnContexts - 1)], &back))
+      return "the ring start is too long";
+    if (back >= d)
+      return "ring start " + std::to_string(back) + " back from the widest face, beyond a ring of " +
+             std::to_string(d);
+    r->a = (widest + d - back) % d;
     const uint32_t half = d / 2;
     uint32_t k = (r->b + d - r->a) % d;
     uint32_t turn = Coder::kEncoding ? zigzag(static_cast<int32_t>(k) - static_cast<int32_t>(half)) : 0;
@@ -150,26 +245,51 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, u
       if (q < 0 || q >= limit) return "vs moves outside [0, 2^position_bits)";
     }
   }
-  // vt's neighbours after the split: w_a .. w_b and vs (moved).
+  // vt's neighbours after the split: w_a .. w_b and vs (moved), `count` of
+  // them; the two axes along vt's plane are predicted by their centroid.
   const uint32_t count = (ring.boundary ? r->b - r->a : (r->b + d - r->a) % d) + 2;
-  int64_t sum[3] = {0, 0, 0}, scalar_sum = 0;
-  for (uint32_t i = 0; i + 1 < count; ++i) {
-    uint32_t w = ring.neighbours[(r->a + i) % d];
-    for (int k = 0; k < 3; ++k) sum[k] += s.positions[w][k];
-    if (h.scalar_bits) scalar_sum += s.scalars[w];
+  const auto neighbour = [&](uint32_t i) { return ring.neighbours[(r->a + i) % d]; };
+  std::array<int32_t, 3> vs_position = s.positions[r->vs];
+  if (h.placement == kPlacementFree)
+    for (int k = 0; k < 3; ++k) vs_position[k] += r->vs_move[k];
+  int64_t sum[3] = {vs_position[0], vs_position[1], vs_position[2]};
+  for (uint32_t i = 0; i + 1 < count; ++i)
+    for (int k = 0; k < 3; ++k) sum[k] += s.positions[neighbour(i)][k];
+  int32_t centroid[3];
+  for (int k = 0; k < 3; ++k) centroid[k] = static_cast<int32_t>((sum[k] + count / 2) / count);
+  // spec 6.7.3: vt lies close to the plane of the faces it takes from vs
+  // (the cheapest collapses are the flattest), so the axis closest to that
+  // plane's normal is predicted from the plane once the other two are known.
+  const std::array<int64_t, 3> normal =
+      arcNormal(s.positions, vs_position, ring, r->a, count, h.position_bits);
+  int normal_axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(normal[k]) > std::abs(normal[normal_axis])) normal_axis = k;
+  const bool has_plane = normal[normal_axis] != 0;
+  if (!has_plane) normal_axis = 2;
+  const int tangent_axis[2] = {normal_axis == 0 ? 1 : 0, normal_axis == 2 ? 1 : 2};
+  for (int t = 0; t < 2; ++t) {
+    const int k = tangent_axis[t];
+    if (!codePosition(coder, ctx.tangent_position[t], centroid[k], h.position_bits, &r->vt_position[k]))
+      return "vt lies outside [0, 2^position_bits) or its residual is too long";
   }
-  for (int k = 0; k < 3; ++k)
-    sum[k] += s.positions[r->vs][k] + (h.placement == kPlacementFree ? r->vs_move[k] : 0);
-  if (h.scalar_bits) scalar_sum += s.scalars[r->vs];
-  for (int k = 0; k < 3; ++k) {
-    const int32_t predicted = static_cast<int32_t>((sum[k] + count / 2) / count);
-    int32_t residual = r->vt_position[k] - predicted;
-    if (!codeSigned(coder, ctx.position[k], &residual)) return "a position residual is too long";
-    int64_t q = int64_t{predicted} + residual;
-    if (q < 0 || q >= limit) return "vt lies outside [0, 2^position_bits)";
-    r->vt_position[k] = static_cast<int32_t>(q);
+  int32_t predicted = centroid[normal_axis];
+  if (has_plane) {
+    // (vt - vs) . normal = 0, solved for the normal axis, rounded, clamped.
+    int64_t along = 0;
+    for (int k : tangent_axis) along -= normal[k] * (int64_t{r->vt_position[k]} - vs_position[k]);
+    const int64_t n = normal[normal_axis];
+    if (n < 0) along = -along;
+    const int64_t step = floorDivide(2 * along + std::abs(n), 2 * std::abs(n));
+    const int64_t top = (int64_t{1} << h.position_bits) - 1;
+    predicted = static_cast<int32_t>(std::clamp<int64_t>(vs_position[normal_axis] + step, 0, top));
   }
+  if (!codePosition(coder, ctx.normal_position, predicted, h.position_bits, &r->vt_position[normal_axis]))
+    return "vt lies outside [0, 2^position_bits) or its residual is too long";
   if (h.scalar_bits) {
+    // The scalar: the rounded mean of the same neighbours' scalars.
+    int64_t scalar_sum = s.scalars[r->vs];
+    for (uint32_t i = 0; i + 1 < count; ++i) scalar_sum += s.scalars[neighbour(i)];
     const int32_t predicted = static_cast<int32_t>((scalar_sum + count / 2) / count);
     int32_t residual = r->vt_scalar - predicted;
     if (!codeSigned(coder, ctx.scalar, &residual)) return "a scalar residual is too long";

@@ -24,6 +24,13 @@ struct SplitRecord {
   int32_t vt_scalar = 0;
 };
 
+// spec 6.7.1: where a batch stands while its splits are coded.
+struct BatchCursor {
+  uint32_t start = 0;    // N_0, the vertex count when the batch began
+  int64_t prev_vs = -1;  // the previous split vertex of the batch
+  uint32_t stamp = 0;    // marks the vertices this batch has locked
+};
+
 struct ProgressiveMesh::Impl {
   PmHeader header;
   CornerTable table;
@@ -32,6 +39,21 @@ struct ProgressiveMesh::Impl {
   std::vector<SplitRecord> splits;
   uint32_t level = 0;  // splits applied
   CornerTable::Ring ring;  // scratch
+
+  // spec 6.7.1: the ring neighbours of a batch's split vertices cannot be
+  // split in the same batch, so `gap` skips them. These are the locked
+  // vertices above the last split vertex, as a min-heap, each pushed once
+  // (lock_stamp[v] == the batch's stamp): skipping costs O(log n) per locked
+  // vertex, never a walk over the vertex numbers.
+  std::vector<uint32_t> locked_ahead;
+  std::vector<uint32_t> lock_stamp;
+  uint32_t batches_begun = 0;
+
+  BatchCursor beginBatch() {
+    locked_ahead.clear();
+    lock_stamp.resize(table.vertexCount(), 0);
+    return BatchCursor{table.vertexCount(), -1, ++batches_begun};
+  }
 
   // Applies splits[level], whose vs has ring `vs_ring` now.
   void applySplit(const CornerTable::Ring& vs_ring);
