@@ -11,6 +11,8 @@ each breaking one rule; the code and offset are derived here from the layout.
 import os
 import struct
 
+from pm_coder import IntegerModels, RangeEncoder, zigzag
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.join(HERE, "..", "..", "shared", "data", "surface")
 CROPS = os.path.join(HERE, "..", "demo", "data")
@@ -35,6 +37,28 @@ def terrain_mesh_text(fmt, size=20, origin=(40, 50)):
             "property list uchar int vertex_indices", "end_header"]
     body = [f"{x} {y} {z} {z}" for x, y, z in verts] + [f"3 {a} {b} {c}" for a, b, c in tris]
     return "\n".join(head + body) + "\n"
+
+
+def vertex_zero_ring(canonical):
+    """(neighbour count, on the boundary) of vertex 0 of a canonical mesh (spec 6.8)."""
+    line_end = canonical.index(b"\n")
+    _, _, v, t, _, s = canonical[:line_end].split()
+    at = line_end + 1 + int(v) * (4 if int(s) else 3) * 4
+    tris = [struct.unpack_from("<3I", canonical, at + 12 * i) for i in range(int(t))]
+    edges = {}
+    for tri in tris:
+        for k in range(3):
+            a, b = tri[k], tri[(k + 1) % 3]
+            edges[(min(a, b), max(a, b))] = edges.get((min(a, b), max(a, b)), 0) + 1
+    around = [(e, n) for e, n in edges.items() if 0 in e]
+    return len(around), any(n == 1 for _, n in around)
+
+
+def first_record(write):
+    """The first PSPL payload's coded string, with every split model fresh (6.5.3)."""
+    rc = RangeEncoder()
+    write(rc)
+    return rc.finish()
 
 
 def build_mesh(g, parse_chunks, frame, offset_of, find):
@@ -135,6 +159,52 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     c[last] = ("PSPL", chunks[last][1] + b"\0\0")
     g.invalid("mesh_trailing_coded_bytes", c, 206, "bad_entropy_payload", offset_of(c, last) + 12, "6.7",
               "two bytes after the last coded split")
+    # Invalid: hand-coded first records (6.7), which the encoder cannot write.
+    base_vertices = struct.unpack_from("<I", chunks[0][1], 8)[0]
+    cow_base = g.reference_output(frame(chunks[:base + 1]))
+    d, on_boundary = vertex_zero_ring(cow_base)
+    assert not on_boundary, "the cow is closed"
+
+    def with_first_batch(coded):
+        c = list(chunks)
+        c[first_split] = ("PSPL", chunks[first_split][1][:4] + coded)
+        return c
+
+    record_at = offset_of(chunks, first_split) + 12
+    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
+    g.invalid("mesh_split_vertex_beyond_batch",
+              with_first_batch(first_record(lambda rc: rc.unsigned(gap, base_vertices))), 303,
+              "bad_vertex_split", record_at, "6.7.1",
+              f"the first split names vertex {base_vertices}, but the batch starts with {base_vertices} vertices")
+    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
+    g.invalid("mesh_split_not_a_neighbour",
+              with_first_batch(first_record(lambda rc: (rc.unsigned(gap, 0), rc.unsigned(arc_start, 1024)))),
+              303, "bad_vertex_split", record_at, "6.7.2",
+              f"vl named 1024 places back in a ring of {d}: a vertex that is not a neighbour of vs")
+    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
+    g.invalid("mesh_split_same_neighbour",
+              with_first_batch(first_record(lambda rc: (rc.unsigned(gap, 0), rc.unsigned(arc_start, 0),
+                                                        rc.unsigned(turn, zigzag(-(d // 2)))))),
+              303, "bad_vertex_split", record_at, "6.7.2",
+              "turn 0: vl and vr the same neighbour, a split that would make a non-manifold edge")
+
+    terrain_chunks = parse_chunks(terrain)
+    terrain_base = find(terrain_chunks, "PBAS")
+    terrain_split = find(terrain_chunks, "PSPL")
+    d, on_boundary = vertex_zero_ring(g.reference_output(frame(terrain_chunks[:terrain_base + 1])))
+    if on_boundary:
+        fan_faces, kind = IntegerModels(), [1024, 1024]
+
+        def fan_too_wide(rc):
+            rc.unsigned(IntegerModels(), 0)  # gap: vs = 0
+            rc.bit(kind, 0, 1)  # on_edge
+            rc.bit(kind, 1, 0)  # G2 only: (a, b) = (0, f)
+            rc.unsigned(fan_faces, d)  # f = d, but a fan of d neighbours has d - 1 faces
+        c = list(terrain_chunks)
+        c[terrain_split] = ("PSPL", terrain_chunks[terrain_split][1][:4] + first_record(fan_too_wide))
+        g.invalid("mesh_split_fan_too_wide", c, 303, "bad_vertex_split", offset_of(c, terrain_split) + 12,
+                  "6.7.2", f"a boundary split giving vt {d} faces of a fan that has {d - 1}")
+
     c = list(chunks)
     c[base] = ("PBAS", b"\x01" + chunks[base][1][1:])
     g.invalid("mesh_base_first_byte", c, 206, "bad_entropy_payload", offset_of(c, base) + 8, "5.6, 6.4",
