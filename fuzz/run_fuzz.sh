@@ -8,7 +8,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=$1 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode fuzz_mesh_read)
 findings=$here/findings
 mkdir -p "$findings"
 scratch=$(mktemp -d)
@@ -22,7 +22,7 @@ for t in "${targets[@]}"; do
   if ! "$build/fuzz/$t" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
       -artifact_prefix="$findings/$t-" -print_final_stats=1 \
       "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
-      "$here/corpus" >"$scratch/$t.log" 2>&1; then
+      "$here/corpus" "$here/corpus_mesh" >"$scratch/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
     tail -40 "$scratch/$t.log"
     status=1
