@@ -90,6 +90,9 @@ if cmp -s "$crop" "$work/in.raw"; then ok; else bad "encode changed its input"; 
 cow="$(dirname "$0")/../../../shared/data/surface/cow_viewpoint_2903v_5804tri.obj"
 expect 0 "$mrsv" encode --quiet --bits 14 "$cow" "$work/cow.mrsv"
 expect 0 "$mrsv" check "$work/cow.mrsv"; stdout_has "progressive mesh, 2904 vertices"
+expect 0 "$mrsv" info "$work/cow.mrsv"; stdout_has "PBAS"; stdout_has "2900 splits"; stdout_has "vertex-split batch"
+expect 0 "$mrsv" info --json "$work/cow.mrsv"
+if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["mesh"]["vertex_count"]==2904' "$work/stdout"; then ok; else bad "info --json of a mesh is not the expected JSON"; fi
 expect 0 "$mrsv" decode --quiet --faces 580 "$work/cow.mrsv" "$work/cow580.off"
 if [ "$(sed -n 2p "$work/cow580.off" | cut -d' ' -f2)" -le 580 ]; then ok; else bad "--faces 580 gave more faces"; fi
 expect 0 "$mrsv" decode --quiet --fraction 1 "$work/cow.mrsv" "$work/cow.ply"

@@ -47,6 +47,9 @@ std::string chunkRole(const ChunkType& type) {
   if (type == kChunkNodataMask) return "no-data mask";
   if (type == kChunkBand) return "band (coarse to fine)";
   if (type == kChunkResidual) return "residual layer";
+  if (type == kChunkMeshHeader) return "mesh header";
+  if (type == kChunkBaseMesh) return "base mesh";
+  if (type == kChunkSplits) return "vertex-split batch (coarse to fine)";
   if (type == kChunkEnd) return "end";
   return type.critical() ? "unknown critical" : "unknown ancillary (skipped)";
 }
@@ -84,6 +87,19 @@ std::string sizeText(const GridHeader& h) {
   return s;
 }
 
+// What info prints of a file, whichever its content.
+struct InfoView {
+  const Container* container = nullptr;
+  const Metadata* metadata = nullptr;
+  std::string summary;       // one line
+  std::string json_content;  // "  \"grid\": {...},\n" or "" when unreadable
+};
+
+std::string countText(const Container& c) {
+  std::string s = ", " + std::to_string(c.chunks.size() + (c.complete ? 1 : 0)) + " chunks";
+  return s + (c.complete ? ", complete" : ", prefix (ends before MEND)");
+}
+
 std::string summary(const DecodedGrid& grid) {
   if (grid.container.chunks.empty()) return "empty prefix (file header only)";
   const GridHeader& h = grid.header;
@@ -100,27 +116,70 @@ std::string summary(const DecodedGrid& grid) {
     if (w.hasResidual()) s += grid.residual_decoded ? ", residual" : ", residual missing";
   }
   if (h.hasNodata()) s += ", nodata " + nodataText(h);
-  s += ", " + std::to_string(grid.container.chunks.size() + (grid.container.complete ? 1 : 0)) +
-       " chunks";
-  s += grid.container.complete ? ", complete" : ", prefix (ends before MEND)";
-  return s;
+  return s + countText(grid.container);
 }
 
-void printJson(const std::string& file, size_t file_size, const DecodedGrid& grid, const Error& e) {
+InfoView gridView(const DecodedGrid& grid) {
+  InfoView v{&grid.container, &grid.metadata, summary(grid), ""};
   const Container& c = grid.container;
+  if (!c.chunks.empty() && c.chunks[0].chunk_type == kChunkGridHeader && grid.header.num_dims) {
+    const GridHeader& h = grid.header;
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
+                  "\"coding\": \"%s\", \"bands\": [%u, %u]",
+                  h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z,
+                  h.coding == GridCoding::kStored ? "stored" : "wavelet", grid.bands_decoded, grid.bands_total);
+    v.json_content = buf;
+    if (h.hasNodata()) v.json_content += ", \"nodata\": " + jsonString(nodataText(h));
+    v.json_content += "},\n";
+  }
+  return v;
+}
+
+// spec 6.2: the PM header, and how much of the stream the bytes hold.
+InfoView meshView(const DecodedMesh& mesh) {
+  InfoView v{&mesh.container, &mesh.metadata, "", ""};
+  const Container& c = mesh.container;
+  if (c.chunks.empty()) {
+    v.summary = "empty prefix (file header only)";
+    return v;
+  }
+  const PmHeader& h = mesh.header;
+  if (h.vertex_count == 0) {
+    v.summary = "content header not readable";
+    return v;
+  }
+  const char* placement = h.placement == kPlacementFree ? "free" : "endpoint";
+  const uint32_t level = mesh.has_mesh ? mesh.mesh.splitsDecoded() : 0;
+  char buf[768];
+  std::snprintf(buf, sizeof buf,
+                "progressive mesh, %u vertices (base %u vertices, %u triangles), %u splits in %u batches, "
+                "%u-bit positions (step %g), placement %s",
+                h.vertex_count, h.base_vertex_count, h.base_triangle_count, h.splitCount(), h.batch_count,
+                h.position_bits, h.position_step, placement);
+  v.summary = buf;
+  if (h.scalar_bits) v.summary += ", " + std::to_string(h.scalar_bits) + "-bit scalar";
+  v.summary += ", decoded " + std::to_string(mesh.batches_decoded) + "/" + std::to_string(h.batch_count) +
+               " batches (" + std::to_string(level) + " splits)" + countText(c);
+  std::snprintf(buf, sizeof buf,
+                "  \"mesh\": {\"vertex_count\": %u, \"base_vertex_count\": %u, \"base_triangle_count\": %u, "
+                "\"batch_count\": %u, \"position_bits\": %u, \"position_step\": %.17g, "
+                "\"origin\": [%.17g, %.17g, %.17g], \"placement\": \"%s\", \"scalar_bits\": %u, "
+                "\"batches_decoded\": %u, \"splits_decoded\": %u},\n",
+                h.vertex_count, h.base_vertex_count, h.base_triangle_count, h.batch_count, h.position_bits,
+                h.position_step, h.origin[0], h.origin[1], h.origin[2], placement, h.scalar_bits,
+                mesh.batches_decoded, level);
+  v.json_content = buf;
+  return v;
+}
+
+void printJson(const std::string& file, size_t file_size, const InfoView& view, const Error& e) {
+  const Container& c = *view.container;
   std::printf("{\n  \"file\": %s,\n  \"bytes\": %zu,\n", jsonString(file).c_str(), file_size);
   std::printf("  \"version\": \"%u.%u\",\n  \"complete\": %s,\n", c.version_major,
               c.version_minor, c.complete ? "true" : "false");
-  if (!c.chunks.empty() && c.chunks[0].chunk_type == kChunkGridHeader && grid.header.num_dims) {
-    const GridHeader& h = grid.header;
-    std::printf("  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
-                "\"coding\": \"%s\", \"bands\": [%u, %u]",
-                h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z,
-                h.coding == GridCoding::kStored ? "stored" : "wavelet", grid.bands_decoded,
-                grid.bands_total);
-    if (h.hasNodata()) std::printf(", \"nodata\": %s", jsonString(nodataText(h)).c_str());
-    std::printf("},\n");
-  }
+  std::fputs(view.json_content.c_str(), stdout);
   std::printf("  \"chunks\": [");
   for (size_t i = 0; i < c.chunks.size(); ++i) {
     const ChunkView& k = c.chunks[i];
@@ -131,9 +190,9 @@ void printJson(const std::string& file, size_t file_size, const DecodedGrid& gri
     std::printf("%s\n    {\"offset\": %" PRIu64 ", \"type\": \"MEND\", \"length\": 0}",
                 c.chunks.empty() ? "" : ",", c.end_chunk_offset);
   std::printf("\n  ],\n  \"metadata\": {");
-  for (size_t i = 0; i < grid.metadata.entries.size(); ++i)
-    std::printf("%s%s: %s", i ? ", " : "", jsonString(grid.metadata.entries[i].first).c_str(),
-                jsonString(grid.metadata.entries[i].second).c_str());
+  for (size_t i = 0; i < view.metadata->entries.size(); ++i)
+    std::printf("%s%s: %s", i ? ", " : "", jsonString(view.metadata->entries[i].first).c_str(),
+                jsonString(view.metadata->entries[i].second).c_str());
   std::printf("},\n  \"error\": ");
   if (e.ok()) {
     std::printf("null\n}\n");
@@ -144,20 +203,20 @@ void printJson(const std::string& file, size_t file_size, const DecodedGrid& gri
   }
 }
 
-void printTable(const std::string& file, size_t file_size, const DecodedGrid& grid) {
-  const Container& c = grid.container;
+void printTable(const std::string& file, size_t file_size, const InfoView& view) {
+  const Container& c = *view.container;
   std::printf("file:     %s (%zu bytes)\n", file.c_str(), file_size);
   std::printf("format:   MRSV %u.%u\n", c.version_major, c.version_minor);
-  std::printf("content:  %s\n", summary(grid).c_str());
+  std::printf("content:  %s\n", view.summary.c_str());
   std::printf("chunks:\n  %10s  %-4s  %10s  %-8s  %s\n", "offset", "type", "length", "crc32c", "role");
   for (const ChunkView& k : c.chunks)
     std::printf("  %10" PRIu64 "  %-4s  %10u  %08x  %s\n", k.offset, k.chunk_type.str().c_str(), k.chunk_length,
                 k.chunk_crc, chunkRole(k.chunk_type).c_str());
   if (c.complete)
     std::printf("  %10" PRIu64 "  %-4s  %10u  %-8s  %s\n", c.end_chunk_offset, "MEND", 0u, "", "end");
-  if (!grid.metadata.entries.empty()) {
+  if (!view.metadata->entries.empty()) {
     std::printf("metadata:\n");
-    for (const auto& [key, value] : grid.metadata.entries)
+    for (const auto& [key, value] : view.metadata->entries)
       std::printf("  %s=%s\n", key.c_str(), value.c_str());
   }
 }
@@ -180,12 +239,21 @@ int runInfo(int argc, char** argv) {
   std::vector<uint8_t> bytes;
   if (!readWholeFile(file, &bytes, &error)) return fail(cmd, file + ": " + error, kExitIo);
   DecodedGrid grid;
-  Error e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+  DecodedMesh mesh;
+  Error e;
+  InfoView view;
+  if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
+    e = decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &mesh);
+    view = meshView(mesh);
+  } else {
+    e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+    view = gridView(grid);
+  }
   if (args.flag("json")) {
-    printJson(file, bytes.size(), grid, e);
+    printJson(file, bytes.size(), view, e);
     return e.ok() ? kExitOk : kExitInvalidData;
   }
-  printTable(file, bytes.size(), grid);
+  printTable(file, bytes.size(), view);
   return e.ok() ? kExitOk : reportError(cmd, file, e);
 }
 
