@@ -129,6 +129,22 @@ echo "  $(sed "s|$out/|demo/out/|" "$out/damaged.txt")"
 if "$mrsv" decode --quiet "$out/damaged.mrsv" "$out/damaged.raw" 2>/dev/null; then exit 1; fi
 [ ! -e "$out/damaged.raw" ] && echo "  decode refused it and wrote no output file"
 
+echo
+echo "== 7. progressive mesh: one stream, every level from the base mesh to the full cow =="
+cow=$data/cow_viewpoint_2903v_5804tri.obj
+"$mrsv" encode --bits 14 "$cow" "$out/cow.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s|$data/|demo/data/|; s/^/  /"
+for faces in 58 580 5804; do
+  "$mrsv" decode --quiet --faces "$faces" "$out/cow.mrsv" "$out/cow_$faces.ply"
+  "$mrsv" compare --json "$cow" "$out/cow_$faces.ply" >"$out/cow_$faces.json"
+  python3 - "$faces" "$out/cow_$faces.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[2]))
+print("  --faces %-5s -> %5d faces: Hausdorff %.5f, RMS %.6f of the bounding-box diagonal"
+      % (sys.argv[1], d["b"]["triangles"], d["hausdorff_relative"], d["rms_relative"]))
+PY
+done
+"$mrsv" check "$out/cow.mrsv" | sed "s|$out/|  demo/out/|"
+
 {
   echo
   echo "== report: lossless sizes (bytes) =="

@@ -6,6 +6,7 @@ The crops are committed; this script documents exactly how they were made
 (see SOURCES.md for the origin and licence of each data set).
 """
 import os
+import shutil
 import subprocess
 import sys
 
@@ -29,7 +30,14 @@ CROPS = [
 ]
 
 
+# Whole small models, copied as they are.
+COPIES = [("cow_viewpoint_2903v_5804tri.obj", "surface/cow_viewpoint_2903v_5804tri.obj")]
+
+
 def main():
+    for name, source in COPIES:
+        shutil.copyfile(os.path.join(SHARED, source), os.path.join(HERE, name))
+        print(f"{name}: copied")
     for name, source, dims, size, origin, crop in CROPS:
         data = subprocess.run(["zstd", "-dc", os.path.join(SHARED, source)], check=True,
                               capture_output=True).stdout
