@@ -80,8 +80,11 @@ Outcome runMeshopt(const TriangleMesh& mesh, uint64_t target, uint64_t levels) {
     // Geometric spacing; the last level is exactly the target.
     const double ratio = std::pow(static_cast<double>(target) / from, static_cast<double>(level) / levels);
     const uint64_t faces = level == levels ? target : static_cast<uint64_t>(std::llround(from * ratio));
+    // meshopt asserts target <= current: when topology stopped an earlier level short,
+    // this level asks for no more than that level has.
+    const size_t target_indices = std::min<size_t>(3 * faces, current.size());
     const size_t n = meshopt_simplify(next.data(), current.data(), current.size(), positions.data(),
-                                      mesh.positions.size(), 3 * sizeof(float), 3 * faces, FLT_MAX, 0, &error);
+                                      mesh.positions.size(), 3 * sizeof(float), target_indices, FLT_MAX, 0, &error);
     next.resize(n);
     std::swap(current, next);
     next.resize(current.size());
