@@ -224,21 +224,31 @@ def bench_mesh(args, name, src, wd, res):
             if not r:
                 continue
             res["simplify"].append(dict(mesh=name, level=level, method=method, target=target,
-                                        triangles=r["triangles"], seconds=r["seconds"], runs=r["runs"],
+                                        triangles=r["triangles"], seconds=r["seconds"], cpu_seconds=r["cpu_seconds"],
+                                        runs=r["runs"],
                                         collapse_seconds=r["collapse_seconds"] if r["collapse_seconds"] >= 0 else "",
                                         batches=r["batches"] or ""))
             note = "MRSV's simplifier in-process, positions not quantised" if method == "mrsv-simplify" else ""
             quality(level, target, method, out, note=note)
 
-    # meshopt building as many levels as MRSV's stream has batches, down to its base mesh.
+    # meshopt building as many levels as MRSV's stream has batches, down to its base mesh;
+    # and MRSV's whole encoder in-process (no file I/O), so that both sides have CPU times.
     if "mrsv" in enc:
         e = enc["mrsv"]
         r = step(f"meshopt chain of {e['batches']} levels",
                  lambda: peers(args, "meshopt", src, None, e["base_triangles"], args.runs, e["batches"]))
         if r:
-            res["simplify"].append(dict(mesh=name, level=f"chain {e['batches']}", method="meshopt-chain",
+            res["simplify"].append(dict(mesh=name, level="base", method="meshopt-chain",
                                         target=e["base_triangles"], triangles=r["triangles"], seconds=r["seconds"],
-                                        runs=r["runs"], batches=r["levels"]))
+                                        cpu_seconds=r["cpu_seconds"], runs=r["runs"], batches=r["levels"]))
+        r = step("mrsv encoder in-process", lambda: peers(args, "mrsv-encode", src, None, None, args.runs))
+        if r:
+            res["simplify"].append(dict(mesh=name, level="base", method="mrsv-encode", target=0,
+                                        triangles=r["triangles"], seconds=r["seconds"], cpu_seconds=r["cpu_seconds"],
+                                        runs=r["runs"], batches=r["batches"], stream_bytes=r["stream_bytes"]))
+            if r["stream_bytes"] != e["bytes"]:
+                res["failed"].append(f"{name}: mesh_peers mrsv-encode wrote {r['stream_bytes']} bytes, "
+                                     f"mrsv encode {e['bytes']}: the two encoders differ")
 
     # Draco on the same (repaired) mesh, same quantisation.
     if not args.no_draco:
@@ -330,28 +340,38 @@ def report(args, res, names, info):
 
     s = {(r["mesh"], r["level"], r["method"]): r for r in res["simplify"]}
     e = {(r["mesh"], r["method"]): r for r in res["encode"]}
-    rows = []
+    rows, rows_wall = [], []
     for n in names:
-        mo = s.get((n, "1%", "meshopt"))
-        ms1 = s.get((n, "1%", "mrsv-simplify"))
-        lt = s.get((n, "1%", "lt"))
+        mo, ms1, lt = s.get((n, "1%", "meshopt")), s.get((n, "1%", "mrsv-simplify")), s.get((n, "1%", "lt"))
+        ch, me = s.get((n, "base", "meshopt-chain")), s.get((n, "base", "mrsv-encode"))
         enc = e.get((n, "mrsv"))
-        ch = next((r for k, r in s.items() if k[0] == n and k[2] == "meshopt-chain"), None)
-        enc_s = enc and enc["simplify_s"] + enc["code_s"]
-        rows.append([n, ms(mo and mo["seconds"]), ch and f"{ms(ch['seconds'])} ({ch['batches']} lv, {ch['triangles']} f)",
-                     ms(ms1 and ms1["seconds"]), ms(lt and lt["seconds"]),
-                     ms(enc and enc["simplify_s"]), ms(enc and enc["code_s"]), ms(enc and enc["wall_s"]),
-                     ratio(ms1 and ms1["seconds"], mo and mo["seconds"]), ratio(enc_s, mo and mo["seconds"]),
-                     ratio(enc and enc["wall_s"], mo and mo["seconds"]), ratio(enc_s, ch and ch["seconds"])])
+        for key, out in (("cpu_seconds", rows), ("seconds", rows_wall)):
+            def t(r):
+                return r and r[key]
+            row = [n, ms(t(mo)), ch and f"{ms(t(ch))} ({ch['batches']} lv, {ch['triangles']} f)", ms(t(ms1)),
+                   me and f"{ms(t(me))} ({me['triangles']} f)", ms(t(lt)),
+                   ratio(t(ms1), t(mo)), ratio(t(me), t(mo)), ratio(t(me), t(ch))]
+            if key == "seconds":
+                enc_s = enc and enc["simplify_s"] + enc["code_s"]
+                row += [ms(enc and enc["simplify_s"]), ms(enc and enc["code_s"]), ms(enc and enc["wall_s"]),
+                        ratio(enc_s, t(mo)), ratio(enc and enc["wall_s"], t(mo))]
+            out.append(row)
+    heads = ["mesh", "meshopt 1%", "meshopt chain", "mrsv simpl 1%", "mrsv encoder", "lt 1%", "simpl/meshopt",
+             "enc/meshopt", "enc/chain"]
     txt.append("")
-    txt.append(table(["mesh", "meshopt 1%", "meshopt chain", "mrsv simpl 1%", "lt 1%", "enc: simplify", "enc: code",
-                      "enc: wall", "simpl/meshopt", "enc/meshopt", "wall/meshopt", "enc/chain"], rows,
-                     f"2. Build time, ms (best of {args.runs}; lt: 1 run). meshopt, mrsv simpl, lt: in-process "
-                     "(mesh_peers), file I/O excluded. enc: `mrsv encode --bits 14` to the base mesh, its own\n"
-                     "   report (simplify, code) and the process wall time (read, repair, write included). "
-                     "Ratios: mrsv simpl 1% / meshopt 1%; enc (simplify+code) / meshopt 1%;\n"
-                     "   enc wall / meshopt 1%; enc (simplify+code) / meshopt chain of as many levels as "
-                     "the stream has batches, down to the base mesh's face count"))
+    txt.append(table(heads, rows,
+                     f"2. Build time, CPU ms, in-process (mesh_peers: no file I/O), best of {args.runs} (lt: 1 run).\n"
+                     "   meshopt 1%: meshopt_simplify to 1 %. meshopt chain: as many levels as the MRSV stream has "
+                     "batches, each from the one before, down to MRSV's base mesh.\n"
+                     "   mrsv simpl 1%: MRSV's simplifier alone to 1 %. mrsv encoder: simplifyMesh() to the base mesh + "
+                     "encodeProgressiveMesh(), i.e. `mrsv encode --bits 14` without I/O.\n"
+                     "   Ratios: simpl/meshopt = mrsv simpl 1% / meshopt 1% (like for like); enc/meshopt = mrsv encoder "
+                     "/ meshopt 1%; enc/chain = mrsv encoder / meshopt chain"))
+    txt.append("")
+    txt.append(table(heads + ["`encode`: simplify", "code", "wall", "(s+c)/meshopt", "wall/meshopt"], rows_wall,
+                     "   The same in wall-clock ms, and the `mrsv encode` runs that made the streams (best of "
+                     f"{args.runs}): its own report (simplify, code) and fork-to-exit wall time (read, repair, "
+                     "write included)"))
 
     d = {r["mesh"]: r for r in res["draco"]}
     rows = []
@@ -391,7 +411,8 @@ def report(args, res, names, info):
     write_csv(args.out / "quality.csv", res["quality"],
               ["mesh", "level", "method", "target", "vertices", "triangles", "hausdorff", "rms", "mean", "note"])
     write_csv(args.out / "simplify_time.csv", res["simplify"],
-              ["mesh", "level", "method", "target", "triangles", "seconds", "collapse_seconds", "runs", "batches"])
+              ["mesh", "level", "method", "target", "triangles", "seconds", "cpu_seconds", "collapse_seconds", "runs",
+               "batches", "stream_bytes"])
     write_csv(args.out / "encode.csv", res["encode"],
               ["mesh", "method", "options", "bytes", "base_vertices", "base_triangles", "splits", "batches",
                "bits_per_split", "simplify_s", "code_s", "wall_s", "cpu_s", "runs"])
