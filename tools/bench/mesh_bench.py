@@ -15,8 +15,8 @@ Tables go to stdout and to RESULTS/summary.txt, CSVs to RESULTS (default
 tools/bench/results/mesh/). Temporary files live in a temp dir that is removed.
 Standard library only.
 
-  /usr/bin/python3 tools/bench/mesh_bench.py                  # the four meshes (~10 min on 2 cores)
-  /usr/bin/python3 tools/bench/mesh_bench.py --quick          # bunny only (~1-2 min)
+  /usr/bin/python3 tools/bench/mesh_bench.py                  # the four meshes (5-7 min on 2 cores)
+  /usr/bin/python3 tools/bench/mesh_bench.py --quick          # bunny only (~40 s)
   /usr/bin/python3 tools/bench/mesh_bench.py --datasets horse,turbine --runs 5
 """
 import argparse
