@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Installs the peer codecs and the Python packages that tools/bench/rd_bench.py needs
+# Installs the peer codecs and the Python packages that tools/bench/rd_bench.py needs,
+# and the mesh peers of tools/bench/mesh_bench.py: meshoptimizer (headers and CMake
+# config, for build/mesh_peers; re-run cmake after installing it) and Draco's tools
 # (Debian 12 packages). As root it runs apt-get for whatever is missing; otherwise it
 # prints the apt-get line to run and exits 1. Exit 0 when everything is present.
 #
@@ -15,8 +17,11 @@ declare -A probe=(
   [zstd]=/usr/bin/zstd
   [python3-numpy]=/usr/lib/python3/dist-packages/numpy/__init__.py
   [python3-matplotlib]=/usr/lib/python3/dist-packages/matplotlib/__init__.py
+  [libmeshoptimizer-dev]=/usr/include/meshoptimizer.h
+  [draco]=/usr/bin/draco_encoder
 )
-order=(zfp libopenjp2-tools libjxl-tools xz-utils zstd python3-numpy python3-matplotlib)
+order=(zfp libopenjp2-tools libjxl-tools xz-utils zstd python3-numpy python3-matplotlib
+       libmeshoptimizer-dev draco)
 
 missing=()
 for p in "${order[@]}"; do

@@ -16,23 +16,16 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "mrsv/mesh_formats.h"
-#include "mrsv/mesh_repair.h"
-#include "simplify/simplify.h"
+#include "mesh_simplifiers.h"
 
 namespace {
 
@@ -121,34 +114,6 @@ Quality compare(const Surface& a, const Surface& b, double diagonal) {
 
 // ---------------------------------------------------------------- runs --
 
-double seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-// The mesh the collapses leave, from the input and the batches.
-std::vector<Tri> applyCollapses(const mrsv::TriangleMesh& mesh, const mrsv::SimplifyResult& r,
-                                std::vector<Vec3>* positions) {
-  *positions = mesh.positions;
-  std::vector<uint32_t> into(mesh.positions.size());
-  for (uint32_t v = 0; v < into.size(); ++v) into[v] = v;
-  for (const auto& batch : r.batches) {
-    for (const auto& c : batch) {
-      into[c.removed] = c.kept;
-      (*positions)[c.kept] = c.kept_position;
-    }
-  }
-  auto root = [&](uint32_t v) {
-    while (into[v] != v) v = into[v];
-    return v;
-  };
-  std::vector<Tri> out;
-  for (const Tri& t : mesh.triangles) {
-    const Tri m = {root(t[0]), root(t[1]), root(t[2])};
-    if (m[0] != m[1] && m[1] != m[2] && m[2] != m[0]) out.push_back(m);
-  }
-  return out;
-}
-
 struct Config {
   std::string name;
   mrsv::SimplifyOptions options;
@@ -168,15 +133,14 @@ void runOurs(const std::string& mesh_name, const mrsv::TriangleMesh& mesh, const
       std::printf("%s: %s\n", mesh_name.c_str(), error.c_str());
       return;
     }
-    best = std::min(best, seconds(start));
+    best = std::min(best, mrsv::bench::secondsSince(start));
   }
   size_t collapses = 0;
   for (const auto& b : result.batches) collapses += b.size();
   Quality q;
   if (measure_quality) {
-    std::vector<Vec3> positions;
-    const std::vector<Tri> tris = applyCollapses(mesh, result, &positions);
-    q = compare(input, surfaceOf(positions, tris), diagonal);
+    const mrsv::TriangleMesh simplified = mrsv::bench::meshAfterCollapses(mesh, result);
+    q = compare(input, surfaceOf(simplified.positions, simplified.triangles), diagonal);
   }
   std::printf("%-22s %-26s %8llu %8llu %9.1f %9.2f %6zu %11.3e %11.3e\n", mesh_name.c_str(),
               config.name.c_str(), static_cast<unsigned long long>(target),
@@ -187,36 +151,12 @@ void runOurs(const std::string& mesh_name, const mrsv::TriangleMesh& mesh, const
 
 void runCgal(const std::string& mesh_name, const mrsv::TriangleMesh& mesh, const Surface& input,
              double diagonal, uint64_t target) {
-  using SurfaceMesh = CGAL::Surface_mesh<Point>;
-  SurfaceMesh sm;
-  std::vector<SurfaceMesh::Vertex_index> vs;
-  for (const Vec3& p : mesh.positions) vs.push_back(sm.add_vertex(Point(p[0], p[1], p[2])));
-  for (const Tri& t : mesh.triangles) sm.add_face(vs[t[0]], vs[t[1]], vs[t[2]]);
-  // Count_stop_predicate counts edges: about 3/2 per triangle.
-  const size_t edge_target = static_cast<size_t>(1.5 * static_cast<double>(target));
-  CGAL::Surface_mesh_simplification::Count_stop_predicate<SurfaceMesh> stop(edge_target);
-  const auto start = std::chrono::steady_clock::now();
-  const int removed = CGAL::Surface_mesh_simplification::edge_collapse(sm, stop);
-  const double time = seconds(start);
-  sm.collect_garbage();
-  std::vector<Vec3> positions;
-  std::map<SurfaceMesh::Vertex_index, uint32_t> index;
-  for (auto v : sm.vertices()) {
-    index[v] = static_cast<uint32_t>(positions.size());
-    const Point& p = sm.point(v);
-    positions.push_back({p.x(), p.y(), p.z()});
-  }
-  std::vector<Tri> tris;
-  for (auto f : sm.faces()) {
-    Tri t{};
-    int i = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[i++] = index[v];
-    tris.push_back(t);
-  }
-  const Quality q = compare(input, surfaceOf(positions, tris), diagonal);
+  mrsv::TriangleMesh simplified;
+  const mrsv::bench::LindstromTurkRun run = mrsv::bench::simplifyLindstromTurk(mesh, target, &simplified);
+  const Quality q = compare(input, surfaceOf(simplified.positions, simplified.triangles), diagonal);
   std::printf("%-22s %-26s %8llu %8zu %9.1f %9.2f %6s %11.3e %11.3e\n", mesh_name.c_str(),
-              "cgal-lindstrom-turk", static_cast<unsigned long long>(target), tris.size(), time * 1e3,
-              removed / time / 1e6, "-", q.hausdorff, q.rms);
+              "cgal-lindstrom-turk", static_cast<unsigned long long>(target), simplified.triangles.size(),
+              run.collapse_seconds * 1e3, run.collapses / run.collapse_seconds / 1e6, "-", q.hausdorff, q.rms);
   std::fflush(stdout);
 }
 
@@ -252,9 +192,7 @@ int main(int argc, char** argv) {
     mrsv::TriangleMesh mesh;
     std::string error;
     mrsv::MeshRepairReport report;
-    std::vector<uint32_t> origin;
-    if (!mrsv::readMeshFile(path, "", &mesh, &error) ||
-        !mrsv::repairMesh(&mesh, mrsv::MeshRepairOptions{}, &report, &origin, &error)) {
+    if (!mrsv::bench::readRepairedMesh(path, &mesh, &report, &error)) {
       std::fprintf(stderr, "%s\n", error.c_str());
       return 1;
     }
