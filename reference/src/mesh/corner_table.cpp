@@ -92,23 +92,47 @@ void CornerTable::ring(uint32_t v, Ring* out) const {
   out->corners.clear();
   const uint32_t start = vertex_corner_[v];
   out->boundary = opposite_[prev(start)] == kNone;
-  uint32_t c = start;
+  if (out->boundary) {
+    // Counter-clockwise from the first face of the fan (VC) to the last: each
+    // face's corner at v and the neighbour it starts at, then the last
+    // neighbour, across v's incoming boundary edge.
+    uint32_t c = start;
+    while (true) {
+      out->corners.push_back(c);
+      out->neighbours.push_back(corner_vertex_[next(c)]);
+      uint32_t across = opposite_[next(c)];
+      if (across == kNone) break;
+      c = next(across);
+    }
+    out->neighbours.push_back(corner_vertex_[prev(c)]);
+    return;
+  }
+  // Interior. First find the face F_0, whose first neighbour is the smallest
+  // (spec 6.6.1): walk both ways from VC until the two walks meet. Each step
+  // depends on the face read by the step before (usually a cache miss on a
+  // large mesh), and the two walks do not depend on each other, so the
+  // processor runs them side by side: half the waiting of one walk around.
+  uint32_t forward = start, backward = start;  // the last face each walk reached
+  uint32_t first = start, smallest = corner_vertex_[next(start)];
+  auto consider = [&](uint32_t c) {
+    const uint32_t w = corner_vertex_[next(c)];
+    if (w < smallest) smallest = w, first = c;
+  };
   while (true) {
+    forward = next(opposite_[next(forward)]);  // the next face counter-clockwise
+    if (forward == backward) break;
+    consider(forward);
+    backward = prev(opposite_[prev(backward)]);  // the next face clockwise
+    if (backward == forward) break;
+    consider(backward);
+  }
+  // Then list the ring counter-clockwise from F_0; its faces are in cache now.
+  uint32_t c = first;
+  do {
     out->corners.push_back(c);
     out->neighbours.push_back(corner_vertex_[next(c)]);
-    uint32_t across = opposite_[next(c)];
-    if (across == kNone) {
-      out->neighbours.push_back(corner_vertex_[prev(c)]);
-      return;  // the end of a boundary fan
-    }
-    c = next(across);
-    if (c == start) break;
-  }
-  // Interior: start at the smallest neighbour (spec 6.6.1).
-  size_t first = std::min_element(out->neighbours.begin(), out->neighbours.end()) -
-                 out->neighbours.begin();
-  std::rotate(out->neighbours.begin(), out->neighbours.begin() + first, out->neighbours.end());
-  std::rotate(out->corners.begin(), out->corners.begin() + first, out->corners.end());
+    c = next(opposite_[next(c)]);
+  } while (c != first);
 }
 
 bool splitPositionsValid(bool boundary, uint32_t d, uint32_t a, uint32_t b,
@@ -127,31 +151,34 @@ void CornerTable::split(uint32_t vs, const Ring& ring, uint32_t a, uint32_t b, S
   const uint32_t faces = static_cast<uint32_t>(ring.corners.size());  // d, or d - 1 on the boundary
   const uint32_t vt = vertexCount();
   const uint32_t t = triangleCount();
-  const uint32_t k = ring.boundary ? b - a : (b + d - a) % d;  // faces that move to vt
-  auto faceCorner = [&](uint32_t i) { return ring.corners[i % faces]; };
+  // Faces that move to vt: F_a .. F_(b-1), modulo d for an interior vs (a and
+  // b are below d, so no division is needed to wrap).
+  const uint32_t k = b >= a ? b - a : b + d - a;
+  auto faceCorner = [&](uint32_t i) { return ring.corners[i]; };
+  auto faceBefore = [&](uint32_t i) { return ring.corners[i > 0 ? i - 1 : faces - 1]; };
   // F_{a-1} and F_b exist unless the fan ends there.
   const bool has_before = !ring.boundary || a > 0;
   const bool has_after = !ring.boundary || b < d - 1;
 
-  for (uint32_t i = 0; i < k; ++i) corner_vertex_[faceCorner(a + i)] = vt;
+  for (uint32_t i = 0, f = a; i < k; ++i, f = f + 1 == faces ? 0 : f + 1) corner_vertex_[faceCorner(f)] = vt;
   const uint32_t g1 = 3 * t, g2 = shape.has_g1 ? 3 * t + 3 : 3 * t;
   const uint32_t added = (shape.has_g1 ? 3 : 0) + (shape.has_g2 ? 3 : 0);
   corner_vertex_.resize(corner_vertex_.size() + added);
   opposite_.resize(opposite_.size() + added, kNone);
-  const uint32_t wa = ring.neighbours[a % d], wb = ring.neighbours[b % d];
+  const uint32_t wa = ring.neighbours[a], wb = ring.neighbours[b];
   if (shape.has_g1) {  // G1 = (vs, w_a, vt)
     corner_vertex_[g1] = vs;
     corner_vertex_[g1 + 1] = wa;
     corner_vertex_[g1 + 2] = vt;
     link(g1, k > 0 ? prev(faceCorner(a)) : kNone);
-    link(g1 + 2, has_before ? next(faceCorner(a + faces - 1)) : kNone);  // F_{a-1}
+    link(g1 + 2, has_before ? next(faceBefore(a)) : kNone);  // F_{a-1}
     opposite_[g1 + 1] = kNone;
   }
   if (shape.has_g2) {  // G2 = (vs, vt, w_b)
     corner_vertex_[g2] = vs;
     corner_vertex_[g2 + 1] = vt;
     corner_vertex_[g2 + 2] = wb;
-    link(g2, k > 0 ? next(faceCorner(b + faces - 1)) : kNone);  // F_{b-1}
+    link(g2, k > 0 ? next(faceBefore(b)) : kNone);  // F_{b-1}
     link(g2 + 1, has_after ? prev(faceCorner(b)) : kNone);
     opposite_[g2 + 2] = kNone;
   }

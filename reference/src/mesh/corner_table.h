@@ -27,6 +27,14 @@ class CornerTable {
   // which every vertex is used. Returns "" or the rule the triangles break.
   std::string build(uint32_t vertex_count, const std::vector<std::array<uint32_t, 3>>& triangles);
 
+  // Room for this many vertices and triangles without reallocating (splits
+  // only ever append); a hint, the table still grows past it.
+  void reserve(size_t vertices, size_t triangles) {
+    vertex_corner_.reserve(vertices);
+    corner_vertex_.reserve(3 * triangles);
+    opposite_.reserve(3 * triangles);
+  }
+
   uint32_t vertexCount() const { return static_cast<uint32_t>(vertex_corner_.size()); }
   uint32_t triangleCount() const { return static_cast<uint32_t>(corner_vertex_.size() / 3); }
   uint32_t vertexOf(uint32_t corner) const { return corner_vertex_[corner]; }

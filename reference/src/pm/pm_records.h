@@ -153,8 +153,8 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, u
   // vt's neighbours after the split: w_a .. w_b and vs (moved).
   const uint32_t count = (ring.boundary ? r->b - r->a : (r->b + d - r->a) % d) + 2;
   int64_t sum[3] = {0, 0, 0}, scalar_sum = 0;
-  for (uint32_t i = 0; i + 1 < count; ++i) {
-    uint32_t w = ring.neighbours[(r->a + i) % d];
+  for (uint32_t i = 0, at = r->a; i + 1 < count; ++i, at = at + 1 == d ? 0 : at + 1) {  // at = (a + i) mod d
+    uint32_t w = ring.neighbours[at];
     for (int k = 0; k < 3; ++k) sum[k] += s.positions[w][k];
     if (h.scalar_bits) scalar_sum += s.scalars[w];
   }
