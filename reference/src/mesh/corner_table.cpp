@@ -195,6 +195,9 @@ void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
   const uint32_t t = triangleCount();
   const uint32_t added = (shape.has_g1 ? 1 : 0) + (shape.has_g2 ? 1 : 0);
   const uint32_t g1 = 3 * (t - added), g2 = shape.has_g1 ? g1 + 3 : g1;
+  // A split leaves vs on the boundary exactly when it was there before, so
+  // this tells what vs will be once the split is undone.
+  const bool vs_on_boundary = isBoundary(vs);
   // Surviving corners of w_a and w_b: in F_{a-1} or F_a, in F_b or F_{b-1}.
   uint32_t keep_wa = kNone, keep_wb = kNone, keep_vs = kNone;
   if (shape.has_g1)
@@ -228,7 +231,10 @@ void CornerTable::collapseLast(uint32_t vs, SplitShape shape) {
   if (shape.has_g2) link(O(g2), O(g2 + 1));
   corners_.resize(g1);
   vertex_corner_.pop_back();
-  resetVertexCorner(vs, keep_vs);
+  // An interior vertex may keep any of its corners in VC; only a boundary
+  // fan has to be walked back to its first face.
+  if (vs_on_boundary) resetVertexCorner(vs, keep_vs);
+  else vertex_corner_[vs] = keep_vs;
   if (shape.has_g1 && vertex_corner_[V(keep_wa)] >= g1)
     resetVertexCorner(V(keep_wa), keep_wa);
   if (shape.has_g2 && vertex_corner_[V(keep_wb)] >= g1)
