@@ -27,10 +27,17 @@ class CornerTable {
   // which every vertex is used. Returns "" or the rule the triangles break.
   std::string build(uint32_t vertex_count, const std::vector<std::array<uint32_t, 3>>& triangles);
 
+  // Room for this many vertices and triangles without reallocating (splits
+  // only ever append); a hint, the table still grows past it.
+  void reserve(size_t vertices, size_t triangles) {
+    vertex_corner_.reserve(vertices);
+    corners_.reserve(3 * triangles);
+  }
+
   uint32_t vertexCount() const { return static_cast<uint32_t>(vertex_corner_.size()); }
-  uint32_t triangleCount() const { return static_cast<uint32_t>(corner_vertex_.size() / 3); }
-  uint32_t vertexOf(uint32_t corner) const { return corner_vertex_[corner]; }
-  bool isBoundary(uint32_t v) const { return opposite_[prev(vertex_corner_[v])] == kNone; }
+  uint32_t triangleCount() const { return static_cast<uint32_t>(corners_.size() / 3); }
+  uint32_t vertexOf(uint32_t corner) const { return V(corner); }
+  bool isBoundary(uint32_t v) const { return O(prev(vertex_corner_[v])) == kNone; }
 
   // spec 6.6.1 the ring of v: its neighbours in counter-clockwise order and
   // the corner of v in each face F_i = (v, w_i, w_i+1). An interior ring is
@@ -43,6 +50,8 @@ class CornerTable {
     std::vector<uint32_t> corners;
   };
   void ring(uint32_t v, Ring* out) const;
+  // A hint that ring(v) comes soon: starts loading the face it begins with.
+  void prefetchRing(uint32_t v) const { __builtin_prefetch(&corners_[vertex_corner_[v]]); }
 
   // What a split added, so that it can be undone.
   struct SplitShape {
@@ -68,14 +77,24 @@ class CornerTable {
 
  private:
   void link(uint32_t a, uint32_t b) {
-    if (a != kNone) opposite_[a] = b;
-    if (b != kNone) opposite_[b] = a;
+    if (a != kNone) O(a) = b;
+    if (b != kNone) O(b) = a;
   }
   // Points VC[v] at the start of v's fan, walking clockwise from `corner`.
   void resetVertexCorner(uint32_t v, uint32_t corner);
 
-  std::vector<uint32_t> corner_vertex_;  // V
-  std::vector<uint32_t> opposite_;       // O
+  // V[c] and O[c] of a corner side by side: walking a ring reads both for
+  // each face, so one cache line, not two, has to come in per face.
+  struct Corner {
+    uint32_t vertex = 0;           // V
+    uint32_t opposite = kNone;     // O
+  };
+  uint32_t& V(uint32_t c) { return corners_[c].vertex; }
+  uint32_t V(uint32_t c) const { return corners_[c].vertex; }
+  uint32_t& O(uint32_t c) { return corners_[c].opposite; }
+  uint32_t O(uint32_t c) const { return corners_[c].opposite; }
+
+  std::vector<Corner> corners_;
   std::vector<uint32_t> vertex_corner_;  // VC
 };
 

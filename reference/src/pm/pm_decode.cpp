@@ -1,4 +1,5 @@
 // spec: 6.1 decoding a PM stream: PHDR, PBAS, then PSPL batches.
+#include <algorithm>
 #include <new>
 #include <string>
 
@@ -21,6 +22,31 @@ uint64_t memoryNeeded(const PmHeader& h) {
   const uint64_t triangles = uint64_t{h.base_triangle_count} + 2 * splits;
   return uint64_t{h.vertex_count} * (sizeof(std::array<int32_t, 3>) + 4 + 4) + triangles * 3 * 8 +
          splits * sizeof(SplitRecord);
+}
+
+// How many splits to make room for before decoding: what PHDR announces, but
+// no more than kSplitsPerCodedByte per byte of coded splits actually present,
+// so that a short hostile file cannot make the decoder allocate its whole
+// memory limit up front. A split of an interior vertex codes at least one
+// equiprobable bit (truncated(d), d >= 3), so real streams stay well below
+// this; a stream beyond it only makes the arrays grow as they go.
+constexpr uint64_t kSplitsPerCodedByte = 8;
+uint64_t splitsToReserve(const Container& c, const PmHeader& h) {
+  uint64_t coded_bytes = 0;
+  for (const ChunkView& chunk : c.chunks)
+    if (chunk.chunk_type == kChunkSplits) coded_bytes += chunk.chunk_length;
+  return std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_bytes);
+}
+
+// Makes room for the base mesh and `splits` splits, each adding one vertex
+// and at most two triangles: decoding then appends without reallocating.
+void reserveForSplits(ProgressiveMesh::Impl& s, uint64_t splits) {
+  const PmHeader& h = s.header;
+  const uint64_t vertices = h.base_vertex_count + splits;
+  s.splits.reserve(splits);
+  s.positions.reserve(vertices);
+  if (h.scalar_bits) s.scalars.reserve(vertices);
+  s.table.reserve(vertices, h.base_triangle_count + 2 * splits);
 }
 
 // A coded payload decodes to exactly its bytes (spec 5.6, as for grids).
@@ -60,6 +86,7 @@ Error decodeChunks(DecodedMesh* out) {
       if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "PBAS"); !e.ok()) return e;
       problem = s.table.build(h.base_vertex_count, triangles);
       if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
+      reserveForSplits(s, splitsToReserve(c, h));
       out->has_mesh = true;
     } else if (chunk.chunk_type == kChunkSplits) {
       // spec 6.7 batch(): split_count u32, then the coded splits.

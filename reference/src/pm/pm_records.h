@@ -173,7 +173,7 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   r->vs = static_cast<uint32_t>(vs);
   batch->prev_vs = vs;
   CornerTable::Ring& ring = s.ring;
-  s.table.ring(r->vs, &ring);
+  s.findRing(r->vs);
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
   if (d > kMaxRingSize)
     return "split vertex " + std::to_string(vs) + " has " + std::to_string(d) +

@@ -55,6 +55,17 @@ struct ProgressiveMesh::Impl {
     return BatchCursor{table.vertexCount(), -1, ++batches_begun};
   }
 
+  // The ring of v into `ring`. The positions (and scalars) of its neighbours
+  // are asked into cache at once: the split predicts vt from some of them a
+  // little later, after decoding the ring positions, and on a large mesh they
+  // are scattered over memory.
+  void findRing(uint32_t v) {
+    table.ring(v, &ring);
+    for (uint32_t w : ring.neighbours) {
+      __builtin_prefetch(&positions[w]);
+      if (header.scalar_bits) __builtin_prefetch(&scalars[w]);
+    }
+  }
   // Applies splits[level], whose vs has ring `vs_ring` now.
   void applySplit(const CornerTable::Ring& vs_ring);
   // Applies splits[level] (finding the ring first).
