@@ -5,7 +5,6 @@
 #pragma once
 
 #include <algorithm>
-#include <functional>
 #include <string>
 
 #include "mrsv/limits.h"
@@ -86,27 +85,34 @@ inline int64_t floorDivide(int64_t num, int64_t den) {
 }
 
 // spec 6.7.3: the sum over vt's faces taken from vs, F_a .. F_(a + count - 3),
-// of (w_i - vs) x (w_i+1 - vs), from differences reduced to 20 bits, then
-// halved (rounding down) until every component is below 2^30, so that no
-// product of the prediction exceeds 62 bits.
+// of (w_i - vs) x (w_i+1 - vs), from differences reduced to 20 bits (floor
+// division by a power of two: an arithmetic shift), then halved (rounding
+// down) until every component is below 2^30, so that no product of the
+// prediction exceeds 62 bits.
+static_assert((int64_t{-3} >> 1) == -2, "floor division by shifting needs an arithmetic right shift");
 inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>>& positions,
                                         const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring,
                                         uint32_t a, uint32_t count, int position_bits) {
   const int drop = position_bits > 20 ? position_bits - 20 : 0;
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
-  const auto edge = [&](uint32_t i, int k) {
-    return floorDivide(int64_t{positions[ring.neighbours[(a + i) % d]][k]} - vs[k], int64_t{1} << drop);
+  int64_t e0[3], e1[3];
+  const auto edge = [&](uint32_t at, int64_t* e) {
+    for (int k = 0; k < 3; ++k) e[k] = (int64_t{positions[ring.neighbours[at]][k]} - vs[k]) >> drop;
   };
   std::array<int64_t, 3> n{0, 0, 0};
+  if (count < 3) return n;
+  uint32_t at = a;
+  edge(at, e0);
   for (uint32_t i = 0; i + 2 < count; ++i) {
-    const int64_t e0[3] = {edge(i, 0), edge(i, 1), edge(i, 2)};
-    const int64_t e1[3] = {edge(i + 1, 0), edge(i + 1, 1), edge(i + 1, 2)};
+    at = at + 1 == d ? 0 : at + 1;
+    edge(at, e1);
     n[0] += e0[1] * e1[2] - e0[2] * e1[1];
     n[1] += e0[2] * e1[0] - e0[0] * e1[2];
     n[2] += e0[0] * e1[1] - e0[1] * e1[0];
+    for (int k = 0; k < 3; ++k) e0[k] = e1[k];
   }
   while (std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])}) >= (int64_t{1} << 30))
-    for (int64_t& c : n) c = floorDivide(c, 2);
+    for (int64_t& c : n) c >>= 1;
   return n;
 }
 
@@ -150,23 +156,19 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
                       SplitRecord* r) {
   const PmHeader& h = s.header;
   // spec 6.7.1: vs is the (gap + 1)-th vertex after prev_vs that is not locked.
-  std::vector<uint32_t>& locked = s.locked_ahead;
-  const auto pop_smallest = [&locked] {
-    std::pop_heap(locked.begin(), locked.end(), std::greater<>());
-    locked.pop_back();
-  };
+  LockedVertices& locked = s.locked_ahead;
   uint32_t gap = 0;
   if (Coder::kEncoding) {
-    uint32_t skipped = 0;
-    for (; !locked.empty() && locked.front() < r->vs; pop_smallest()) ++skipped;
-    if (!locked.empty() && locked.front() == r->vs)
+    const uint32_t skipped = r->vs == 0 ? 0 : locked.takeUpTo(r->vs - 1);
+    if (locked.smallest() == r->vs)
       return "split vertex " + std::to_string(r->vs) + " neighbours an earlier split of its batch";
     gap = static_cast<uint32_t>(r->vs - (batch->prev_vs + 1)) - skipped;
   }
   if (!codeUnsigned(coder, ctx.gap, &gap)) return "the vertex gap is too long";
   int64_t vs = Coder::kEncoding ? int64_t{r->vs} : batch->prev_vs + 1 + int64_t{gap};
   if (!Coder::kEncoding)
-    for (; !locked.empty() && locked.front() <= vs; pop_smallest()) ++vs;
+    for (uint32_t more = 1; more != 0 && vs < batch->start; vs += more)
+      more = locked.takeUpTo(static_cast<uint32_t>(vs));
   if (vs >= batch->start)
     return "split vertex " + std::to_string(vs) + " is not a vertex of the mesh at the start of the batch (" +
            std::to_string(batch->start) + " vertices)";
@@ -178,12 +180,10 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   if (d > kMaxRingSize)
     return "split vertex " + std::to_string(vs) + " has " + std::to_string(d) +
            " neighbours, more than 1024";
+  // Its neighbours are locked at the end of the record; their marks are
+  // asked into cache now.
   for (uint32_t w : ring.neighbours)
-    if (w > r->vs && w < batch->start && s.lock_stamp[w] != batch->stamp) {
-      s.lock_stamp[w] = batch->stamp;
-      locked.push_back(w);
-      std::push_heap(locked.begin(), locked.end(), std::greater<>());
-    }
+    if (w < batch->start) __builtin_prefetch(&s.lock_stamp[w]);
   // spec 6.7.2 ring positions.
   if (!ring.boundary) {
     // vt's old faces are the stretched ones after its collapse: a is coded
@@ -298,6 +298,11 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
     r->vt_scalar = static_cast<int32_t>(q);
   }
   if (coder.overrun()) return "coded data ends inside a vertex split (truncated record)";
+  for (uint32_t w : ring.neighbours)
+    if (w > r->vs && w < batch->start && s.lock_stamp[w] != batch->stamp) {
+      s.lock_stamp[w] = batch->stamp;
+      locked.push(w);
+    }
   return "";
 }
 

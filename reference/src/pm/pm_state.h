@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/corner_table.h"
+#include "pm/locked_vertices.h"
 #include "mrsv/progressive_mesh.h"
 
 namespace mrsv {
@@ -42,10 +43,9 @@ struct ProgressiveMesh::Impl {
 
   // spec 6.7.1: the ring neighbours of a batch's split vertices cannot be
   // split in the same batch, so `gap` skips them. These are the locked
-  // vertices above the last split vertex, as a min-heap, each pushed once
-  // (lock_stamp[v] == the batch's stamp): skipping costs O(log n) per locked
-  // vertex, never a walk over the vertex numbers.
-  std::vector<uint32_t> locked_ahead;
+  // vertices above the last split vertex, each pushed once (lock_stamp[v] ==
+  // the batch's stamp).
+  pm::LockedVertices locked_ahead;
   std::vector<uint32_t> lock_stamp;
   uint32_t batches_begun = 0;
 
