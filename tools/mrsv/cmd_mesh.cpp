@@ -29,9 +29,10 @@ const char kEncodeHelp[] =
     "  --cost quadric|paper  collapse order: quadric error (Garland-Heckbert; default) or\n"
     "                        the paper's energies (normal, edge length, equilateral)\n"
     "  --weights N,E,Q       weights of the paper's energies (default 50,1,5: section 7.1)\n"
-    "  --placement endpoint|free  where the kept vertex goes: stays (default; smaller\n"
-    "                        stream) or moves to the quadric optimum (each split then\n"
-    "                        also codes the move)\n"
+    "  --placement free|endpoint  where the kept vertex goes: moves to the volume-\n"
+    "                        preserving quadric optimum (default; each split also codes\n"
+    "                        the move) or stays (about 35 % smaller stream, about 1.8\n"
+    "                        times the RMS error at 1 % of the faces)\n"
     "  --bits B              quantisation: bits per coordinate over the bounding box's\n"
     "                        longest side, 1..30 (default 16)\n"
     "  --scalar NAME         carry the PLY vertex property NAME as the per-vertex scalar\n"
@@ -81,6 +82,9 @@ int runMeshEncode(int argc, char** argv) {
   const bool quiet = args.flag("quiet");
 
   SimplifyOptions simplify;
+  // Free placement by default: at 10 % and 1 % of the faces it halves the RMS
+  // error of endpoint placement, which is worth the moves' bits (decision D22).
+  simplify.placement = Placement::kFree;
   PmEncodeOptions encode;
   if (args.has("cost")) {
     if (args.value("cost") == "quadric") simplify.cost = CollapseCost::kQuadric;

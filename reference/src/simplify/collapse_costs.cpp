@@ -28,9 +28,10 @@ Quadric Quadric::plane(const Vec3& n, double d, double weight) {
   return r;
 }
 
-bool Quadric::minimizer(Vec3* out) const {
-  // Solve A x = -b by the adjugate: A is symmetric,
-  // [q0 q1 q2; q1 q4 q5; q2 q5 q7], b = (q3, q6, q8).
+bool Quadric::constrainedMinimizer(const Vec3& g, double offset, Vec3* out) const {
+  // With A the 3x3 part and b = (q3, q6, q8), the free minimiser is
+  // x0 = -A^-1 b; on the plane g . x = offset the minimiser is
+  // x0 + t A^-1 g with t = (offset - g . x0) / (g . A^-1 g) (Lagrange).
   const double c00 = q[4] * q[7] - q[5] * q[5];
   const double c01 = q[2] * q[5] - q[1] * q[7];
   const double c02 = q[1] * q[5] - q[2] * q[4];
@@ -40,10 +41,17 @@ bool Quadric::minimizer(Vec3* out) const {
   const double det = q[0] * c00 + q[1] * c01 + q[2] * c02;
   const double mean = (q[0] + q[4] + q[7]) / 3.0;
   if (!(mean > 0.0) || !(det > kConditionLimit * mean * mean * mean)) return false;
-  const double inv = -1.0 / det;
-  (*out)[0] = inv * (c00 * q[3] + c01 * q[6] + c02 * q[8]);
-  (*out)[1] = inv * (c01 * q[3] + c11 * q[6] + c12 * q[8]);
-  (*out)[2] = inv * (c02 * q[3] + c12 * q[6] + c22 * q[8]);
+  const double inv = 1.0 / det;
+  const Vec3 x0 = {-inv * (c00 * q[3] + c01 * q[6] + c02 * q[8]),
+                   -inv * (c01 * q[3] + c11 * q[6] + c12 * q[8]),
+                   -inv * (c02 * q[3] + c12 * q[6] + c22 * q[8])};
+  const Vec3 y = {inv * (c00 * g[0] + c01 * g[1] + c02 * g[2]), inv * (c01 * g[0] + c11 * g[1] + c12 * g[2]),
+                  inv * (c02 * g[0] + c12 * g[1] + c22 * g[2])};
+  const double gy = dot(g, y);
+  // A is positive definite here, so g . A^-1 g > 0 unless g is (numerically)
+  // zero: fans that enclose no volume either way leave x0 as it is.
+  const double t = gy > 0.0 ? (offset - dot(g, x0)) / gy : 0.0;
+  *out = {x0[0] + t * y[0], x0[1] + t * y[1], x0[2] + t * y[2]};
   return std::isfinite((*out)[0]) && std::isfinite((*out)[1]) && std::isfinite((*out)[2]);
 }
 
@@ -62,34 +70,40 @@ Vec3 Quadric::segmentMinimizer(const Vec3& a, const Vec3& b) const {
   return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
-void buildQuadrics(const EdgeTopology& topo, const std::vector<Vec3>& positions,
-                   double boundary_weight, std::vector<Quadric>* quadrics) {
-  quadrics->assign(topo.numVertices(), Quadric{});
-  for (uint32_t t = 0; t < topo.numTriangles(); ++t) {
-    if (!topo.triangleAlive(t)) continue;
-    const uint32_t v[3] = {topo.vertexOf(3 * t), topo.vertexOf(3 * t + 1), topo.vertexOf(3 * t + 2)};
-    const Vec3 n = cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
-    const double twice_area = length(n);
-    if (twice_area > 0.0) {
-      const Vec3 u = {n[0] / twice_area, n[1] / twice_area, n[2] / twice_area};
-      const Quadric p = Quadric::plane(u, -dot(u, positions[v[0]]), 0.5 * twice_area);
-      for (uint32_t x : v) (*quadrics)[x].add(p);
-    }
-    for (int i = 0; i < 3; ++i) {
-      const uint32_t h = 3 * t + i;
-      if (!topo.edgeOnBoundary(h) || !(twice_area > 0.0)) continue;
-      const uint32_t a = v[i];
-      const uint32_t b = v[(i + 1) % 3];
-      const Vec3 e = sub(positions[b], positions[a]);
-      Vec3 m = cross(e, n);
+TrianglePlane trianglePlane(const Vec3& a, const Vec3& b, const Vec3& c) {
+  TrianglePlane t;
+  t.n = cross(sub(b, a), sub(c, a));
+  t.offset = dot(t.n, a);
+  const double twice_area = length(t.n);
+  t.quadric_scale = twice_area > 0.0 ? 0.5 / twice_area : 0.0;
+  return t;
+}
+
+void vertexQuadric(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   const std::vector<TrianglePlane>& planes, uint32_t v, double boundary_weight,
+                   Quadric* quadric, VolumeTerm* volume) {
+  *quadric = Quadric{};
+  *volume = VolumeTerm{};
+  const bool boundary = topo.onBoundary(v);
+  topo.forEachOutgoing(v, [&](uint32_t h) {
+    const TrianglePlane& t = planes[EdgeTopology::triangleOf(h)];
+    volume->add({t.n, t.offset});
+    if (!(t.quadric_scale > 0.0)) return;
+    quadric->add(Quadric::plane(t.n, -t.offset, t.quadric_scale));
+    if (!boundary) return;
+    // The fan's boundary edges: the outgoing one of its first triangle and the
+    // incoming one of its last; both are edges of this triangle through v.
+    for (uint32_t e : {h, EdgeTopology::prev(h)}) {
+      if (!topo.edgeOnBoundary(e)) continue;
+      const Vec3& e0 = positions[topo.vertexOf(e)];
+      const Vec3 along = sub(positions[topo.target(e)], e0);
+      Vec3 m = cross(along, t.n);
       const double ml = length(m);
       if (!(ml > 0.0)) continue;
       m = {m[0] / ml, m[1] / ml, m[2] / ml};
-      const Quadric p = Quadric::plane(m, -dot(m, positions[a]), boundary_weight * dot(e, e));
-      (*quadrics)[a].add(p);
-      (*quadrics)[b].add(p);
+      quadric->add(Quadric::plane(m, -dot(m, e0), boundary_weight * dot(along, along)));
     }
-  }
+  });
 }
 
 Vec3 vertexNormal(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t v) {

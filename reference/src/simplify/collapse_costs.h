@@ -17,7 +17,8 @@ namespace mrsv::simplify {
 struct Quadric {
   std::array<double, 10> q{};
 
-  // weight * (n . p + d)^2, for the plane n . p + d = 0 with |n| = 1.
+  // weight * (n . p + d)^2 (with |n| = 1, weight times the squared distance
+  // to the plane n . p + d = 0).
   static Quadric plane(const Vec3& n, double d, double weight);
   void add(const Quadric& o) {
     for (int i = 0; i < 10; ++i) q[i] += o.q[i];
@@ -27,21 +28,53 @@ struct Quadric {
     return x * (q[0] * x + 2.0 * (q[1] * y + q[2] * z + q[3])) +
            y * (q[4] * y + 2.0 * (q[5] * z + q[6])) + z * (q[7] * z + 2.0 * q[8]) + q[9];
   }
-  // The point of least error, when the 3x3 part is well conditioned
-  // (det >= kConditionLimit * (trace / 3)^3, i.e. the planes pin all three
+  // The point of least error on the plane g . p = offset (the volume
+  // constraint), when the 3x3 part is well conditioned (det >=
+  // kConditionLimit * (trace / 3)^3, i.e. the planes pin all three
   // directions down); false otherwise (flat or cylindrical neighbourhoods).
-  bool minimizer(Vec3* out) const;
+  bool constrainedMinimizer(const Vec3& g, double offset, Vec3* out) const;
   // The point of least error on the segment [a, b] (the fallback when the
   // minimiser is unusable: along a cylinder, say, it still finds the best
   // point of the edge, not just the best of its ends and middle).
   Vec3 segmentMinimizer(const Vec3& a, const Vec3& b) const;
 };
 
-// Area-weighted plane quadrics of every vertex, plus for every boundary edge
-// the plane through it perpendicular to its triangle, weighted by
-// boundary_weight * length^2, which keeps the boundary where it is.
-void buildQuadrics(const EdgeTopology& topo, const std::vector<Vec3>& positions,
-                   double boundary_weight, std::vector<Quadric>* quadrics);
+// The signed volume between a fan of triangles and the cone from a point p
+// over the fan's rim is (g . p - offset) / 6, with g the sum of the
+// triangles' (unnormalised, twice-area) normals and offset the sum of
+// normal . corner: linear in p, so fans add up term by term.
+struct VolumeTerm {
+  Vec3 g{0.0, 0.0, 0.0};
+  double offset = 0.0;
+  void add(const VolumeTerm& o) {
+    g = {g[0] + o.g[0], g[1] + o.g[1], g[2] + o.g[2]};
+    offset += o.offset;
+  }
+  void subtract(const VolumeTerm& o) {
+    g = {g[0] - o.g[0], g[1] - o.g[1], g[2] - o.g[2]};
+    offset -= o.offset;
+  }
+};
+
+// What the costs need of one triangle (a, b, c): n = (b - a) x (c - a) (twice
+// the area along the normal), n . a, and 1 / (2 |n|) (0 for a degenerate
+// triangle). Its area-weighted plane quadric, area * distance^2, is
+// (n . p - offset)^2 / (2 |n|), and its volume term is (n, offset).
+struct TrianglePlane {
+  Vec3 n{0.0, 0.0, 0.0};
+  double offset = 0.0;
+  double quadric_scale = 0.0;
+};
+TrianglePlane trianglePlane(const Vec3& a, const Vec3& b, const Vec3& c);
+
+// The memoryless quadric of live vertex v: the area-weighted plane quadrics of
+// the triangles of its fan as they are now (planes, by triangle number), plus
+// for each boundary edge of the fan the plane through it perpendicular to its
+// triangle, weighted by boundary_weight * length^2 (which keeps the boundary
+// where it is); and the volume term of the fan.
+void vertexQuadric(const EdgeTopology& topo, const std::vector<Vec3>& positions,
+                   const std::vector<TrianglePlane>& planes, uint32_t v, double boundary_weight,
+                   Quadric* quadric, VolumeTerm* volume);
 
 // Area-weighted unit normal of live vertex v (zero if its fan has no area).
 Vec3 vertexNormal(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t v);

@@ -3,21 +3,31 @@
 //
 // Every edge keeps one candidate, the cheaper of its two directions that the
 // boundary rules allow and that has not failed the consistency checks, with
-// its cost. A collapse recomputes the candidates of the edges whose cost
-// inputs changed (those around the kept vertex), so no candidate is ever
-// stale. A direction that fails the checks is not tried again until a
-// collapse changes the neighbourhood of one of the edge's endpoints, which is
-// when its outcome can change.
+// its cost. Costs are memoryless (Lindstrom and Turk): a vertex's quadric
+// describes its fan as it is now, not the part of the input it stands for.
+// A collapse therefore changes the quadrics of the kept vertex and of all its
+// neighbours, and the costs of every edge around those. All of these
+// vertices are locked for the rest of the batch, so none of those edges can
+// be taken before it ends; then the quadrics are recomputed (once per vertex,
+// however many collapses of the batch touched it) and the candidates around
+// each kept vertex, whose shape changed, are recomputed too. The other
+// candidates around the neighbours, of which only one end's quadric changed,
+// are marked outdated by the vertices' change counters and recomputed only
+// when a batch is about to take them: few ever are, and recomputing them all
+// would triple the work. A direction that fails the checks is not tried
+// again until a collapse changes the neighbourhood of one of the edge's
+// endpoints, which is when its outcome can change.
 //
 // A batch is one pass in cost order: every candidate up to batch_cost_ratio
-// times the cheapest one is sorted, then taken in order unless an endpoint
-// is locked. Accepting a collapse locks both endpoints and all their
-// neighbours. Unlocked vertices keep their neighbourhood through the batch,
-// so the accepted collapses satisfy the independence rule of SimplifyResult
-// by construction, and candidates that touch a locked vertex simply wait for
-// the next batch. Sorting per batch, rather than keeping a global heap, is
-// what makes it fast: a heap pays O(log n) cache misses for every stale,
-// locked or recomputed entry, and batches have plenty of those.
+// times the cheapest one, or up to the batch_min_fraction quantile of the
+// candidates' costs if that is higher, is sorted, then taken in order unless
+// an endpoint is locked. Accepting a collapse locks both endpoints and all
+// their neighbours. Unlocked vertices keep their neighbourhood through the
+// batch, so the accepted collapses satisfy the independence rule of
+// SimplifyResult by construction, and candidates that touch a locked vertex
+// simply wait for the next batch. Sorting per batch, rather than keeping a
+// global heap, is what makes it fast: a heap pays O(log n) cache misses for
+// every stale, locked or recomputed entry, and batches have plenty of those.
 #include "simplify/simplify.h"
 
 #include <algorithm>
@@ -44,6 +54,8 @@ using simplify::Vec3;
 constexpr double kBoundaryWeight = 100.0;
 // How often (in collapses) the clock and the progress callback are consulted.
 constexpr uint32_t kCheckInterval = 1024;
+// The batch rule's quantile is estimated from every kSampleStride-th edge.
+constexpr size_t kSampleStride = 8;
 // Direction of an edge's candidate: which end of its canonical half-edge goes.
 constexpr uint8_t kOriginGoes = 0;
 constexpr uint8_t kTargetGoes = 1;
@@ -72,6 +84,13 @@ class Simplifier {
     const uint32_t o = topo_.opposite(h);
     return o != kNone && o < h ? o : h;
   }
+  // Whether both directions of edge h give the same collapse: the same
+  // position, cost and resulting mesh (only the vertex that keeps its number
+  // differs). True for the quadric cost with free placement when neither end
+  // is on the boundary; such an edge is evaluated once.
+  bool symmetric(uint32_t h) const {
+    return quadric_free_ && !topo_.onBoundary(topo_.vertexOf(h)) && !topo_.onBoundary(topo_.target(h));
+  }
   // Where the kept vertex goes; true if that is not where it is.
   bool place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* position) const;
   double cost(uint32_t removed, uint32_t kept, const Vec3& position, bool moves) const;
@@ -80,9 +99,23 @@ class Simplifier {
   void chooseDirection(uint32_t h);
   void refreshEdge(uint32_t h) {
     failed_[h] = 0;
+    evaluated_at_[h] = collapses_;
     chooseDirection(h);
   }
   void refreshEdgesAround(uint32_t v);
+  void updatePlane(uint32_t t) {
+    planes_[t] = simplify::trianglePlane(positions_[topo_.vertexOf(3 * t)], positions_[topo_.vertexOf(3 * t + 1)],
+                                         positions_[topo_.vertexOf(3 * t + 2)]);
+  }
+  // Whether a collapse changed the neighbourhood of an end of edge h since
+  // its candidate was computed.
+  bool outdated(uint32_t h) const {
+    return std::max(changed_at_[topo_.vertexOf(h)], changed_at_[topo_.target(h)]) > evaluated_at_[h];
+  }
+  // After a batch: new quadrics (and normals) for the vertices its collapses
+  // changed, then new candidates for the edges around the kept vertices
+  // (around all changed vertices for the paper's energies).
+  void refreshChanged();
   // Tries the current candidate of edge h; on failure marks the direction and
   // returns false.
   bool consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* position);
@@ -91,29 +124,43 @@ class Simplifier {
   const SimplifyOptions& options_;
   EdgeTopology topo_;
   std::vector<Vec3> positions_;
+  // Per vertex: its memoryless quadric and its fan's volume term.
   std::vector<Quadric> quadrics_;
+  std::vector<simplify::VolumeTerm> volumes_;
+  // Per triangle: its plane, kept current as vertices move.
+  std::vector<simplify::TrianglePlane> planes_;
   std::vector<Vec3> normals_;  // CollapseCost::kPaper only
-  // Per canonical half-edge: the candidate, and which directions failed the
-  // checks (bit d for direction d) after how many collapses.
+  // Per canonical half-edge: the candidate, which directions failed the
+  // checks (bit d for direction d), and after how many collapses the
+  // candidate (or the failure) was computed.
   std::vector<double> edge_cost_;
   std::vector<uint8_t> direction_;
   std::vector<uint8_t> failed_;
-  std::vector<uint32_t> failed_at_;
+  std::vector<uint32_t> evaluated_at_;
   // Per vertex: the batch that last locked it, and the number of collapses
   // made when its neighbourhood last changed.
   std::vector<uint32_t> locked_in_batch_;
   std::vector<uint32_t> changed_at_;
+  // The vertices whose fan a collapse of this batch changed (with repeats)
+  // and the kept vertices among them; per vertex and per half-edge the last
+  // batch that refreshed it.
+  std::vector<uint32_t> changed_;
+  std::vector<uint32_t> kept_in_batch_;
+  std::vector<uint32_t> vertex_refreshed_in_;
+  std::vector<uint32_t> edge_refreshed_in_;
   // The canonical half-edges of the live edges, with listed_ marking them. An
   // edge whose canonical half-edge changes is one around a kept vertex, and
   // gets its new one appended; the list drops stale entries every batch.
   std::vector<uint32_t> edges_;
   std::vector<uint8_t> listed_;
   std::vector<Entry> pool_;
+  std::vector<double> sample_;
   std::vector<uint32_t> scratch_;
   simplify::VertexMarks marks_;
   simplify::GeometryLimits limits_;
   simplify::PaperWeights paper_;
   double cost_floor_ = 0.0;
+  bool quadric_free_ = false;
   uint64_t live_vertices_ = 0;
   uint32_t batch_number_ = 0;
   uint32_t collapses_ = 0;
@@ -146,12 +193,24 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
     ++edges;
   }
   const double unit = edges > 0 && length_sum > 0.0 ? length_sum / static_cast<double>(edges) : 1.0;
+  quadric_free_ = options_.cost == CollapseCost::kQuadric && options_.placement == Placement::kFree;
   paper_.normal = options_.weight_normal;
   paper_.edge_length = options_.weight_edge_length;
   paper_.equilateral = options_.weight_equilateral;
   paper_.inverse_length_unit = 1.0 / unit;
 
-  buildQuadrics(topo_, positions_, kBoundaryWeight, &quadrics_);
+  planes_.assign(topo_.numTriangles(), simplify::TrianglePlane{});
+  for (uint32_t t = 0; t < topo_.numTriangles(); ++t) {
+    if (topo_.triangleAlive(t)) updatePlane(t);
+  }
+  quadrics_.assign(nv, Quadric{});
+  volumes_.assign(nv, simplify::VolumeTerm{});
+  vertex_refreshed_in_.assign(nv, 0);
+  for (uint32_t v = 0; v < nv; ++v) {
+    if (topo_.alive(v)) {
+      simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &quadrics_[v], &volumes_[v]);
+    }
+  }
   if (options_.cost == CollapseCost::kPaper) {
     normals_.assign(nv, Vec3{0.0, 0.0, 0.0});
     for (uint32_t v = 0; v < nv; ++v) {
@@ -168,8 +227,10 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
   edge_cost_.assign(nh, 0.0);
   direction_.assign(nh, kNoDirection);
   failed_.assign(nh, 0);
-  failed_at_.assign(nh, 0);
+  evaluated_at_.assign(nh, 0);
   listed_.assign(nh, 0);
+  edge_refreshed_in_.assign(nh, 0);
+
   for (uint32_t h = 0; h < nh; ++h) {
     if (canonical(h) == h) {
       edges_.push_back(h);
@@ -202,8 +263,18 @@ bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* positi
     // midpoint); a far optimum comes from nearly parallel planes.
     const double len2 = (pr[0] - pk[0]) * (pr[0] - pk[0]) + (pr[1] - pk[1]) * (pr[1] - pk[1]) +
                         (pr[2] - pk[2]) * (pr[2] - pk[2]);
+    // Lindstrom and Turk's volume preservation: the new fan encloses as much
+    // as the two old ones, so the simplified surface does not drift inwards
+    // on convex parts (or outwards on concave ones) as plain quadric optima
+    // do. The fans share the edge's triangles, which count once.
+    simplify::VolumeTerm volume = volumes_[removed];
+    volume.add(volumes_[kept]);
+    auto subtractTriangle = [&](uint32_t t) { volume.subtract({planes_[t].n, planes_[t].offset}); };
+    subtractTriangle(EdgeTopology::triangleOf(h));
+    const uint32_t twin = topo_.opposite(h);
+    if (twin != kNone) subtractTriangle(EdgeTopology::triangleOf(twin));
     Vec3 x;
-    if (q.minimizer(&x) && (x[0] - mid[0]) * (x[0] - mid[0]) + (x[1] - mid[1]) * (x[1] - mid[1]) +
+    if (q.constrainedMinimizer(volume.g, volume.offset, &x) && (x[0] - mid[0]) * (x[0] - mid[0]) + (x[1] - mid[1]) * (x[1] - mid[1]) +
                                    (x[2] - mid[2]) * (x[2] - mid[2]) <=
                                len2) {
       *position = x;
@@ -225,6 +296,23 @@ void Simplifier::chooseDirection(uint32_t h) {
   const uint32_t a = topo_.vertexOf(h);
   const uint32_t b = topo_.target(h);
   direction_[h] = kNoDirection;
+  if (symmetric(h)) {
+    if (failed_[h] != 0) return;  // both directions fail alike
+    Vec3 position;
+    place(a, b, h, &position);
+    edge_cost_[h] = cost(a, b, position, true);
+    // Keeping the end nearer the new position makes the coded move smaller.
+    const Vec3& pa = positions_[a];
+    const Vec3& pb = positions_[b];
+    const double to_a = (position[0] - pa[0]) * (position[0] - pa[0]) +
+                        (position[1] - pa[1]) * (position[1] - pa[1]) +
+                        (position[2] - pa[2]) * (position[2] - pa[2]);
+    const double to_b = (position[0] - pb[0]) * (position[0] - pb[0]) +
+                        (position[1] - pb[1]) * (position[1] - pb[1]) +
+                        (position[2] - pb[2]) * (position[2] - pb[2]);
+    direction_[h] = to_b <= to_a ? kOriginGoes : kTargetGoes;
+    return;
+  }
   for (uint8_t d : {kOriginGoes, kTargetGoes}) {
     if (failed_[h] & (1u << d)) continue;
     const uint32_t removed = d == kOriginGoes ? a : b;
@@ -243,6 +331,8 @@ void Simplifier::chooseDirection(uint32_t h) {
 void Simplifier::refreshEdgesAround(uint32_t v) {
   uint32_t last = kNone;
   auto refresh = [&](uint32_t c) {
+    if (edge_refreshed_in_[c] == batch_number_) return;
+    edge_refreshed_in_[c] = batch_number_;
     refreshEdge(c);
     if (!listed_[c]) {
       listed_[c] = 1;
@@ -264,8 +354,8 @@ bool Simplifier::consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* p
       simplify::geometryAllows(topo_, positions_, removed, kept, *position, moves, limits_)) {
     return true;
   }
-  failed_[h] |= static_cast<uint8_t>(1u << direction_[h]);
-  failed_at_[h] = collapses_;
+  failed_[h] |= static_cast<uint8_t>(symmetric(h) ? 3u : 1u << direction_[h]);
+  evaluated_at_[h] = collapses_;
   chooseDirection(h);
   return false;
 }
@@ -279,14 +369,40 @@ void Simplifier::lockNeighbourhood(uint32_t v) {
   });
 }
 
+void Simplifier::refreshChanged() {
+  const bool paper = options_.cost == CollapseCost::kPaper;
+  scratch_.clear();
+  for (uint32_t v : changed_) {
+    if (!topo_.alive(v) || vertex_refreshed_in_[v] == batch_number_) continue;
+    vertex_refreshed_in_[v] = batch_number_;
+    scratch_.push_back(v);
+    simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &quadrics_[v], &volumes_[v]);
+    if (paper) normals_[v] = simplify::vertexNormal(topo_, positions_, v);
+  }
+  changed_.clear();
+  // The edges around a kept vertex changed shape, and their costs change
+  // most: they are recomputed now. Around its neighbours only one end's
+  // quadric changed; those candidates are outdated (outdated()) and are
+  // recomputed only when a batch is about to take them, which few are. The
+  // paper's energies, which the sort order depends on more, are recomputed
+  // now.
+  for (uint32_t v : kept_in_batch_) {
+    if (topo_.alive(v)) refreshEdgesAround(v);
+  }
+  kept_in_batch_.clear();
+  if (paper) {
+    for (uint32_t v : scratch_) refreshEdgesAround(v);
+  }
+}
+
 void Simplifier::run(SimplifyResult* result) {
   result->batches.clear();
   const uint64_t start_triangles = topo_.liveTriangles();
   const uint64_t target = options_.target_triangles;
   const double ratio = std::max(1.0, options_.batch_cost_ratio);
   const double max_fraction = std::clamp(options_.batch_max_fraction, 0.0, 1.0);
+  double min_fraction = std::clamp(options_.batch_min_fraction, 0.0, 1.0);
   const auto start_time = std::chrono::steady_clock::now();
-  const bool paper = options_.cost == CollapseCost::kPaper;
   auto report = [&](bool final) {
     if (!options_.progress) return;
     const double goal = static_cast<double>(start_triangles) - static_cast<double>(target);
@@ -308,6 +424,7 @@ void Simplifier::run(SimplifyResult* result) {
       // neighbourhood changed, find the cheapest candidate.
       double cheapest = std::numeric_limits<double>::infinity();
       size_t kept_edges = 0;
+      sample_.clear();
       for (size_t i = 0; i < edges_.size(); ++i) {
         const uint32_t h = edges_[i];
         const uint32_t a = topo_.vertexOf(h);
@@ -316,18 +433,26 @@ void Simplifier::run(SimplifyResult* result) {
           continue;
         }
         edges_[kept_edges++] = h;
-        if (failed_[h] != 0 &&
-            std::max(changed_at_[a], changed_at_[topo_.target(h)]) > failed_at_[h]) {
+        if (failed_[h] != 0 && outdated(h)) {
           refreshEdge(h);  // the neighbourhood changed since the failure
         }
-        if (direction_[h] != kNoDirection) cheapest = std::min(cheapest, edge_cost_[h]);
+        if (direction_[h] != kNoDirection) {
+          cheapest = std::min(cheapest, edge_cost_[h]);
+          if (kept_edges % kSampleStride == 0) sample_.push_back(edge_cost_[h]);
+        }
       }
       edges_.resize(kept_edges);
       if (cheapest == std::numeric_limits<double>::infinity()) break;
       // The batch takes collapses up to `ratio` times the cheapest candidate's
       // cost (costs near zero count as cost_floor_; negative costs of the
       // paper's energies are measured by their magnitude).
-      const double limit = cheapest + (ratio - 1.0) * std::max(std::fabs(cheapest), cost_floor_);
+      double limit = cheapest + (ratio - 1.0) * std::max(std::fabs(cheapest), cost_floor_);
+      if (min_fraction > 0.0 && !sample_.empty()) {
+        const size_t k = std::min(sample_.size() - 1,
+                                  static_cast<size_t>(min_fraction * static_cast<double>(sample_.size())));
+        std::nth_element(sample_.begin(), sample_.begin() + k, sample_.end());
+        limit = std::max(limit, sample_[k]);
+      }
       // Pass 2: the candidates within the limit, in cost order.
       pool_.clear();
       for (uint32_t h : edges_) {
@@ -341,6 +466,10 @@ void Simplifier::run(SimplifyResult* result) {
         if (a == kNone) continue;  // died in this batch (its ends are locked)
         const uint32_t b = topo_.target(h);
         if (locked_in_batch_[a] == batch_number_ || locked_in_batch_[b] == batch_number_) continue;
+        if (outdated(h)) {
+          refreshEdge(h);
+          if (direction_[h] == kNoDirection || edge_cost_[h] > limit) continue;
+        }
         Vec3 position;
         uint32_t removed = 0, kept = 0;
         bool ok = false;
@@ -360,21 +489,13 @@ void Simplifier::run(SimplifyResult* result) {
         lockNeighbourhood(kept);
         topo_.collapse(removed, kept, h);
         positions_[kept] = position;
-        quadrics_[kept].add(quadrics_[removed]);
+        // Every triangle whose shape changed is now in the kept vertex's fan.
+        topo_.forEachOutgoing(kept, [&](uint32_t e) { updatePlane(EdgeTopology::triangleOf(e)); });
         --live_vertices_;
         batch.push_back({removed, kept, position});
-
-        if (paper) {
-          // Normals change on the kept vertex and all its neighbours, and with
-          // them the costs of every edge around those.
-          scratch_.clear();
-          scratch_.push_back(kept);
-          topo_.forEachNeighbour(kept, [&](uint32_t w) { scratch_.push_back(w); });
-          for (uint32_t v : scratch_) normals_[v] = simplify::vertexNormal(topo_, positions_, v);
-          for (uint32_t v : scratch_) refreshEdgesAround(v);
-        } else {
-          refreshEdgesAround(kept);
-        }
+        changed_.push_back(kept);
+        kept_in_batch_.push_back(kept);
+        topo_.forEachNeighbour(kept, [&](uint32_t w) { changed_.push_back(w); });
 
         if (topo_.liveTriangles() <= target) stop = true;
         if (collapses_ % kCheckInterval == 0) {
@@ -389,6 +510,7 @@ void Simplifier::run(SimplifyResult* result) {
     }
     if (batch.empty()) break;  // no consistent collapse is left
     result->batches.push_back(batch);
+    if (!stop) refreshChanged();
   }
   result->final_triangles = topo_.liveTriangles();
   result->final_vertices = live_vertices_;
