@@ -6,8 +6,9 @@
 // METHOD
 //   lt          CGAL edge_collapse, Lindstrom-Turk cost and placement
 //   meshopt     meshopt_simplify (meshoptimizer), no error limit, no options
-//   mrsv        MRSV's simplifier (the first stage of `mrsv encode`), defaults
-//   mrsv-free   ... with --placement free
+//   mrsv        MRSV's simplifier (the first stage of `mrsv encode`), with the
+//               tool's defaults (free placement)
+//   mrsv-endpoint ... with --placement endpoint
 //   mrsv-paper  ... with --cost paper
 //   mrsv-encode MRSV's whole encoder in-process, as `mrsv encode --bits B` runs it:
 //               simplification to the base mesh (or to --faces N) and stream
@@ -56,7 +57,7 @@ using mrsv::TriangleMesh;
 using mrsv::bench::secondsSince;
 
 const char kUsage[] =
-    "usage: mesh_peers lt|meshopt|mrsv|mrsv-free|mrsv-paper|mrsv-encode|repair IN [OUT] [--faces N] [--runs R]\n"
+    "usage: mesh_peers lt|meshopt|mrsv|mrsv-endpoint|mrsv-paper|mrsv-encode|repair IN [OUT] [--faces N] [--runs R]\n"
     "                  [--chain K] [--bits B]\n";
 
 double cpuSeconds() {
@@ -123,7 +124,8 @@ Outcome runMeshopt(const TriangleMesh& mesh, uint64_t target, uint64_t levels) {
 bool runMrsv(const TriangleMesh& mesh, uint64_t target, const std::string& method, uint64_t bits, Outcome* o,
              std::string* error) {
   mrsv::SimplifyOptions options;
-  if (method == "mrsv-free") options.placement = mrsv::Placement::kFree;
+  // As `mrsv encode` sets it (the library's own default is endpoint).
+  options.placement = method == "mrsv-endpoint" ? mrsv::Placement::kEndpoint : mrsv::Placement::kFree;
   if (method == "mrsv-paper") options.cost = mrsv::CollapseCost::kPaper;
   options.target_triangles = target;
   mrsv::SimplifyResult result;
@@ -203,7 +205,7 @@ int main(int argc, char** argv) {
   const std::string& method = positional[0];
   const std::string& in = positional[1];
   const std::string out = positional.size() == 3 ? positional[2] : "";
-  const bool is_mrsv = method == "mrsv" || method == "mrsv-free" || method == "mrsv-paper" || method == "mrsv-encode";
+  const bool is_mrsv = method == "mrsv" || method == "mrsv-endpoint" || method == "mrsv-paper" || method == "mrsv-encode";
   if (method != "lt" && method != "meshopt" && method != "repair" && !is_mrsv) {
     std::fprintf(stderr, "mesh_peers: unknown method %s\n%s", method.c_str(), kUsage);
     return 2;
