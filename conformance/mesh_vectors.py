@@ -11,7 +11,7 @@ each breaking one rule; the code and offset are derived here from the layout.
 import os
 import struct
 
-from pm_coder import IntegerModels, RangeEncoder, zigzag
+from pm_coder import PROBABILITY_ONE, IntegerModels, RangeEncoder, zigzag
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.join(HERE, "..", "..", "shared", "data", "surface")
@@ -54,10 +54,16 @@ def vertex_zero_ring(canonical):
     return len(around), any(n == 1 for _, n in around)
 
 
-def first_record(write):
-    """The first PSPL payload's coded string, with every split model fresh (6.5.3)."""
+def first_record(*values):
+    """The first PSPL payload's coded string. Every split model is fresh there (6.5.3) and
+    each value below uses a different one, so each gets a new model: ("unsigned", v) or
+    ("bit", v)."""
     rc = RangeEncoder()
-    write(rc)
+    for kind, value in values:
+        if kind == "bit":
+            rc.bit([PROBABILITY_ONE // 2], 0, value)
+        else:
+            rc.unsigned(IntegerModels(), value)
     return rc.finish()
 
 
@@ -171,20 +177,16 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
         return c
 
     record_at = offset_of(chunks, first_split) + 12
-    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
     g.invalid("mesh_split_vertex_beyond_batch",
-              with_first_batch(first_record(lambda rc: rc.unsigned(gap, base_vertices))), 303,
+              with_first_batch(first_record(("unsigned", base_vertices))), 303,  # gap
               "bad_vertex_split", record_at, "6.7.1",
               f"the first split names vertex {base_vertices}, but the batch starts with {base_vertices} vertices")
-    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
     g.invalid("mesh_split_not_a_neighbour",
-              with_first_batch(first_record(lambda rc: (rc.unsigned(gap, 0), rc.unsigned(arc_start, 1024)))),
+              with_first_batch(first_record(("unsigned", 0), ("unsigned", 1024))),  # gap, arc_start
               303, "bad_vertex_split", record_at, "6.7.2",
               f"vl named 1024 places back in a ring of {d}: a vertex that is not a neighbour of vs")
-    gap, arc_start, turn = IntegerModels(), IntegerModels(), IntegerModels()
-    g.invalid("mesh_split_same_neighbour",
-              with_first_batch(first_record(lambda rc: (rc.unsigned(gap, 0), rc.unsigned(arc_start, 0),
-                                                        rc.unsigned(turn, zigzag(-(d // 2)))))),
+    g.invalid("mesh_split_same_neighbour",  # gap, arc_start, turn
+              with_first_batch(first_record(("unsigned", 0), ("unsigned", 0), ("unsigned", zigzag(-(d // 2))))),
               303, "bad_vertex_split", record_at, "6.7.2",
               "turn 0: vl and vr the same neighbour, a split that would make a non-manifold edge")
 
@@ -193,15 +195,11 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     terrain_split = find(terrain_chunks, "PSPL")
     d, on_boundary = vertex_zero_ring(g.reference_output(frame(terrain_chunks[:terrain_base + 1])))
     if on_boundary:
-        fan_faces, kind = IntegerModels(), [1024, 1024]
-
-        def fan_too_wide(rc):
-            rc.unsigned(IntegerModels(), 0)  # gap: vs = 0
-            rc.bit(kind, 0, 1)  # on_edge
-            rc.bit(kind, 1, 0)  # G2 only: (a, b) = (0, f)
-            rc.unsigned(fan_faces, d)  # f = d, but a fan of d neighbours has d - 1 faces
+        # gap 0 (vs = 0), on_edge 1, last 0 (G2 only: (a, b) = (0, f)), then f = d, but a
+        # fan of d neighbours has d - 1 faces.
+        fan_too_wide = first_record(("unsigned", 0), ("bit", 1), ("bit", 0), ("unsigned", d))
         c = list(terrain_chunks)
-        c[terrain_split] = ("PSPL", terrain_chunks[terrain_split][1][:4] + first_record(fan_too_wide))
+        c[terrain_split] = ("PSPL", terrain_chunks[terrain_split][1][:4] + fan_too_wide)
         g.invalid("mesh_split_fan_too_wide", c, 303, "bad_vertex_split", offset_of(c, terrain_split) + 12,
                   "6.7.2", f"a boundary split giving vt {d} faces of a fan that has {d - 1}")
 

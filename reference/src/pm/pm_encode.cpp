@@ -213,11 +213,11 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
     RangeEncoder rc(&payload);
     EncodingCoder coder{&rc};
     BatchCursor cursor = s.beginBatch();
-    CornerTable::Ring ring;
+    const CornerTable::Ring& ring = s.ring;
     for (const ReplayedCollapse& c : batch) {
       SplitRecord record;
       record.vs = id[c.kept];
-      s.table.ring(record.vs, &ring);
+      s.findRing(record.vs);  // codeSplit codes positions in this ring
       const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
       auto where = [&](uint32_t v, uint32_t absent) {
         if (v == kNone) return absent;

@@ -135,7 +135,7 @@ inline uint32_t widestFace(const std::vector<std::array<int32_t, 3>>& positions,
   const auto squared = [&](uint32_t i) {
     int64_t sum = 0;
     for (int k = 0; k < 3; ++k) {
-      const int64_t e = int64_t{positions[ring.neighbours[i % d]][k]} - vs[k];
+      const int64_t e = int64_t{positions[ring.neighbours[i]][k]} - vs[k];
       sum += e * e;
     }
     return sum;
@@ -143,7 +143,7 @@ inline uint32_t widestFace(const std::vector<std::array<int32_t, 3>>& positions,
   uint32_t widest = 0;
   int64_t best = -1, previous = squared(0);
   for (uint32_t i = 0; i < d; ++i) {
-    const int64_t next = squared(i + 1);
+    const int64_t next = squared(i + 1 == d ? 0 : i + 1);
     if (previous + next > best) best = previous + next, widest = i;
     previous = next;
   }
@@ -174,8 +174,9 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
            std::to_string(batch->start) + " vertices)";
   r->vs = static_cast<uint32_t>(vs);
   batch->prev_vs = vs;
-  CornerTable::Ring& ring = s.ring;
-  s.findRing(r->vs);
+  // The encoder has found vs's ring already: it names vl and vr by it.
+  const CornerTable::Ring& ring = s.ring;
+  if (!Coder::kEncoding) s.findRing(r->vs);
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
   if (d > kMaxRingSize)
     return "split vertex " + std::to_string(vs) + " has " + std::to_string(d) +
@@ -248,13 +249,14 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   // vt's neighbours after the split: w_a .. w_b and vs (moved), `count` of
   // them; the two axes along vt's plane are predicted by their centroid.
   const uint32_t count = (ring.boundary ? r->b - r->a : (r->b + d - r->a) % d) + 2;
-  const auto neighbour = [&](uint32_t i) { return ring.neighbours[(r->a + i) % d]; };
+  // Ring positions a, a + 1, ... (mod d) without a division per step.
+  const auto next = [d](uint32_t at) { return at + 1 == d ? 0 : at + 1; };
   std::array<int32_t, 3> vs_position = s.positions[r->vs];
   if (h.placement == kPlacementFree)
     for (int k = 0; k < 3; ++k) vs_position[k] += r->vs_move[k];
   int64_t sum[3] = {vs_position[0], vs_position[1], vs_position[2]};
-  for (uint32_t i = 0; i + 1 < count; ++i)
-    for (int k = 0; k < 3; ++k) sum[k] += s.positions[neighbour(i)][k];
+  for (uint32_t i = 0, at = r->a; i + 1 < count; ++i, at = next(at))
+    for (int k = 0; k < 3; ++k) sum[k] += s.positions[ring.neighbours[at]][k];
   int32_t centroid[3];
   for (int k = 0; k < 3; ++k) centroid[k] = static_cast<int32_t>((sum[k] + count / 2) / count);
   // spec 6.7.3: vt lies close to the plane of the faces it takes from vs
@@ -289,7 +291,8 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   if (h.scalar_bits) {
     // The scalar: the rounded mean of the same neighbours' scalars.
     int64_t scalar_sum = s.scalars[r->vs];
-    for (uint32_t i = 0; i + 1 < count; ++i) scalar_sum += s.scalars[neighbour(i)];
+    for (uint32_t i = 0, at = r->a; i + 1 < count; ++i, at = next(at))
+      scalar_sum += s.scalars[ring.neighbours[at]];
     const int32_t predicted = static_cast<int32_t>((scalar_sum + count / 2) / count);
     int32_t residual = r->vt_scalar - predicted;
     if (!codeSigned(coder, ctx.scalar, &residual)) return "a scalar residual is too long";
