@@ -131,7 +131,7 @@ def build(g):
                 g.encode(helens, "int16", h2, ["--order", str(order), "--step", "7"]),
                 "4, 5", f"a terrain window, order {order}, lossy with step 7 (no residual)")
         g.valid(f"volume_order{order}_rate",
-                g.encode(head, "uint8", h3, ["--order", str(order), "--bits-per-sample", "1.5"]),
+                g.encode(head, "uint8", h3, ["--order", str(order), "--progressive", "--bits-per-sample", "1.5"]),
                 "4, 5", f"a CT block (3-D uint8), order {order}, about 1.5 bits per sample")
     # The baseline entropy mode (5.10).
     g.valid("terrain_baseline_lossless",
@@ -139,7 +139,7 @@ def build(g):
             "5.10", "a terrain window, baseline entropy mode, lossless (bands + residual)",
             expected=canonical("int16", h2, helens))
     g.valid("volume_baseline_rate",
-            g.encode(head, "uint8", h3, ["--entropy", "baseline", "--bits-per-sample", "1.5"]),
+            g.encode(head, "uint8", h3, ["--entropy", "baseline", "--progressive", "--bits-per-sample", "1.5"]),
             "5.10", "a CT block, baseline entropy mode, about 1.5 bits per sample")
     g.valid("terrain_baseline_nodata_predictive",
             g.encode(fuji, "int16", [53, 47], ["--entropy", "baseline", "--max-error", "2",

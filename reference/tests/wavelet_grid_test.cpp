@@ -137,24 +137,47 @@ TEST(WaveletGrid, ErrorBoundHoldsForEverySample) {
 
 TEST(WaveletGrid, RateAndPsnrTargetsAreMet) {
   for (const TestGrid& g : realWindows()) {
+    const double n = static_cast<double>(g.header.sampleCount());
     for (double rate : {0.5, 2.0}) {
+      // Progressive (wavelet levels only): the rate is met within 5 %.
       WaveletEncodeOptions options;
       options.bits_per_sample = rate;
+      options.progressive = true;
       std::vector<uint8_t> stream;
-      WaveletEncodeReport report;
-      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &report).ok())
+      WaveletEncodeReport progressive;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &progressive).ok())
           << g.name;
-      double achieved = 8.0 * static_cast<double>(stream.size()) / static_cast<double>(g.header.sampleCount());
+      double achieved = 8.0 * static_cast<double>(stream.size()) / n;
       EXPECT_LE(achieved, rate) << g.name;
       EXPECT_GE(achieved, 0.95 * rate) << g.name << " (rate met within 5 %)";
+      EXPECT_GT(progressive.levels, 0) << g.name;
+      // The default also tries the predictive route (spec 5.9 item 6): it never
+      // does worse, and a stream well under the rate must be a better one.
+      options.progressive = false;
+      WaveletEncodeReport chosen;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &chosen).ok())
+          << g.name;
+      achieved = 8.0 * static_cast<double>(stream.size()) / n;
+      EXPECT_LE(achieved, rate) << g.name;
+      EXPECT_GE(chosen.psnr, progressive.psnr) << g.name << " rate " << rate;
+      if (achieved < 0.95 * rate) {
+        EXPECT_EQ(chosen.levels, 0) << g.name << " rate " << rate;
+        EXPECT_GT(chosen.psnr, progressive.psnr) << g.name << " rate " << rate;
+      }
     }
     WaveletEncodeOptions options;
     options.psnr = 45;
-    std::vector<uint8_t> stream;
+    options.progressive = true;
+    std::vector<uint8_t> progressive, chosen;
     WaveletEncodeReport report;
-    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &report).ok());
+    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &progressive, &report).ok());
     EXPECT_GE(report.psnr, 45) << g.name;
     EXPECT_LT(report.psnr, 46.5) << g.name << ": the target is met without waste";
+    options.progressive = false;
+    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &chosen, &report).ok());
+    EXPECT_GE(report.psnr, 45) << g.name;
+    EXPECT_LE(chosen.size(), progressive.size()) << g.name;
+    if (report.levels == 0) EXPECT_LT(chosen.size(), progressive.size()) << g.name;
   }
 }
 
@@ -164,6 +187,7 @@ TEST(WaveletGrid, DeterministicAndPrefixesRefine) {
                                        "/terrain/mt_st_helens_317x460_int16le.raw.zst", &g));
   WaveletEncodeOptions options;
   options.bits_per_sample = 2;
+  options.progressive = true;
   std::vector<uint8_t> a, b;
   ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &a, nullptr).ok());
   ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &b, nullptr).ok());

@@ -48,6 +48,10 @@ const char kHelp[] =
     "                        smaller, not progressive) or auto (the smaller; default)\n"
     "  --bits-per-sample R   the best quality within R bits per sample\n"
     "  --psnr P              the smallest stream with PSNR >= P dB (peak: max - min)\n"
+    "                        (integer samples: the predictive route, which is not\n"
+    "                        progressive, is tried too and kept when it is better)\n"
+    "  --progressive         only streams with decomposition levels, every prefix a\n"
+    "                        coarser approximation (never the predictive route)\n"
     "  --step S              quantiser step S in sample units (no rate control)\n"
     "  --keep F              global oracle: keep the fraction F (0 < F <= 1) of the\n"
     "                        coefficients that contribute most to the L2 norm\n"
@@ -171,7 +175,7 @@ int runEncode(int argc, char** argv) {
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy"},
-                   {"quiet", "help", "lossless"},
+                   {"quiet", "help", "lossless", "progressive"},
                    {"meta"}},
                   &error))
     return fail(cmd, error + " (see 'mrsv encode --help')", kExitUsage);
@@ -259,7 +263,10 @@ int runEncode(int argc, char** argv) {
     else if (r != "auto") return fail(cmd, "--bound-route must be auto, residual or predictive", kExitUsage);
     if (wavelet.max_error < 0)
       return fail(cmd, "--bound-route goes with --lossless or --max-error", kExitUsage);
+    if (wavelet.bound_route == WaveletEncodeOptions::BoundRoute::kPredictive && args.flag("progressive"))
+      return fail(cmd, "--bound-route predictive is not progressive; drop one of them", kExitUsage);
   }
+  wavelet.progressive = args.flag("progressive");
   if (args.has("roi")) {
     if (!parseRegion(args.value("roi"), &wavelet.roi, &error)) return fail(cmd, "--roi: " + error, kExitUsage);
     if (wavelet.max_error >= 0)
@@ -308,10 +315,13 @@ int runEncode(int argc, char** argv) {
   if (coding == "wavelet" && !args.flag("quiet")) {
     std::fprintf(stderr,
                  "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, "
-                 "%llu coefficients kept, L2 error %.6g (orthogonal estimate %.6g)\n",
+                 "%s, %llu coefficients kept, L2 error %.6g (orthogonal estimate %.6g)\n",
                  out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
                  std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(),
-                 report.max_abs_error, static_cast<unsigned long long>(report.kept_coefficients),
+                 report.max_abs_error,
+                 report.levels > 0 ? ("levels " + std::to_string(report.levels)).c_str()
+                                   : "levels 0 (predictive route, not progressive)",
+                 static_cast<unsigned long long>(report.kept_coefficients),
                  report.l2_error, report.l2_error_orthogonal_estimate);
   }
   progress.update(1.0);

@@ -42,6 +42,11 @@ struct WaveletEncodeOptions {
   // (often smaller, not progressive); kAuto keeps the smaller stream.
   enum class BoundRoute { kAuto, kResidual, kPredictive };
   BoundRoute bound_route = BoundRoute::kAuto;
+  // Only streams with decomposition levels (every prefix a coarser
+  // approximation): the predictive route is not considered, neither for an
+  // error bound (as kResidual) nor, for integer samples, beside the wavelets
+  // under a rate or PSNR target (spec 5.9 item 6).
+  bool progressive = false;
   double keep_fraction = 0;   // (0, 1]: global oracle, keep the most important coefficients
   bool has_roi = false;       // local oracle: full detail where basis functions reach the region
   RegionOfInterest roi;
@@ -56,6 +61,7 @@ struct WaveletEncodeReport {
   double base_step = 0;       // in normalised units
   uint32_t residual_step = 0; // 0 without a residual layer
   int iterations = 0;         // encodes tried by the rate control
+  int levels = 0;             // decomposition levels of the stream (0: the predictive route)
   // The L2 error of the quantised wavelet expansion in function space (finest
   // B-splines, unit knot spacing), exactly through the Gram matrices, and the
   // orthogonal estimate sqrt(sum (e_i ||psi_i||)^2) an orthogonal basis would give.

@@ -168,6 +168,7 @@ class GridEncoder {
   bool integerSamples() const { return !isFloatType(header_.sample_type); }
   double unitsPerSample() const { return 1.0 / scale_; }
   double keepThreshold() const { return keep_threshold_; }
+  int levels() const { return plan_.maxLevels(); }
   // The exact L2 error of the bands (spec 5.9) and its orthogonal estimate.
   void l2Errors(double delta, WaveletEncodeReport* report) const;
 
@@ -591,6 +592,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     enc.l2Errors(delta, &rep);
     rep.base_step = delta;
     rep.residual_step = residual_step;
+    rep.levels = enc.levels();
     *out = std::move(stream);
     if (report) *report = rep;
     return {};
@@ -608,7 +610,8 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     // Route 1: wavelet bands plus a residual layer; a few wavelet steps around
     // the residual step, keeping the smallest stream.
     const bool try_residual = options.bound_route != WaveletEncodeOptions::BoundRoute::kPredictive;
-    const bool try_predictive = options.bound_route != WaveletEncodeOptions::BoundRoute::kResidual;
+    const bool try_predictive =
+        options.bound_route != WaveletEncodeOptions::BoundRoute::kResidual && !options.progressive;
     for (int k = -1; try_residual && k <= 7; ++k) {
       double delta = std::ldexp(static_cast<double>(residual_step), k);
       if (Error e = wavelet_enc.encode(delta, residual_step, metadata, &stream); !e.ok()) return e;
@@ -708,7 +711,75 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
                    by_rate ? "the rate is too low for even the coarsest approximation"
                            : "the PSNR target cannot be met");
   }
-  return finish(std::move(best), best_delta, 0);
+  if (!enc.integerSamples() || options.progressive || options.has_roi)
+    return finish(std::move(best), best_delta, 0);
+
+  // The predictive route as a second candidate (informative 5.9 item 6): no
+  // decomposition, the samples quantised with step 2d+1 and neighbour
+  // prediction, so every error is within d. At high rates on noisy or sparse
+  // data it beats the wavelets, and when the lossless stream fits (d = 0) it is
+  // exact. Its error is close to uniform on -d..d, MSE d(d+1)/3, which bounds
+  // the d worth trying.
+  double wavelet_psnr, worst;
+  if (Error e = enc.measure(best, &wavelet_psnr, &worst); !e.ok()) return e;
+  WaveletEncodeOptions flat = options;
+  flat.max_levels = 0;
+  if (Error e = predictive_enc.prepare(header, samples, flat); !e.ok()) return e;
+  const double range_sq = enc.range() * enc.range();
+  auto largestBound = [&](double mse) {  // the largest d with d(d+1)/3 <= mse
+    double d = std::floor((std::sqrt(1 + 12 * mse) - 1) / 2);
+    return static_cast<uint32_t>(std::clamp(d, 0.0, double{(kMaxResidualStep - 1) / 2}));
+  };
+  auto predictiveAt = [&](uint32_t d, std::vector<uint8_t>* s) {
+    ++rep.iterations;
+    return predictive_enc.encode(static_cast<double>(2 * d + 1), 0, metadata, s);
+  };
+  std::vector<uint8_t> candidate;
+  uint32_t candidate_d = 0;
+  if (by_rate) {
+    // The smallest d that fits, searched below the d whose uniform-error MSE
+    // is twice the wavelet stream's (beyond it the wavelets surely win).
+    const double wavelet_mse = std::isinf(wavelet_psnr) ? 0 : range_sq / std::pow(10.0, wavelet_psnr / 10);
+    uint32_t fits = largestBound(2 * wavelet_mse);
+    if (Error e = predictiveAt(fits, &stream); !e.ok()) return e;
+    if (static_cast<double>(stream.size()) <= target_bytes) {
+      candidate.swap(stream);
+      candidate_d = fits;
+      int64_t fails = -1;  // the largest d known not to fit
+      while (static_cast<int64_t>(candidate_d) - fails > 1 &&
+             static_cast<double>(candidate.size()) < 0.98 * target_bytes) {
+        uint32_t mid = static_cast<uint32_t>((fails + static_cast<int64_t>(candidate_d)) / 2);
+        if (Error e = predictiveAt(mid, &stream); !e.ok()) return e;
+        if (static_cast<double>(stream.size()) <= target_bytes) {
+          candidate.swap(stream);
+          candidate_d = mid;
+        } else {
+          fails = mid;
+        }
+      }
+      double psnr;
+      if (Error e = predictive_enc.measure(candidate, &psnr, &worst); !e.ok()) return e;
+      if (!(psnr > wavelet_psnr)) candidate.clear();
+    }
+  } else {
+    // The largest d that reaches the PSNR, from the uniform-error estimate
+    // down by halving (d = 0 is exact and always reaches it).
+    uint32_t d = largestBound(range_sq / std::pow(10.0, options.psnr / 10));
+    while (true) {
+      if (Error e = predictiveAt(d, &stream); !e.ok()) return e;
+      double psnr;
+      if (Error e = predictive_enc.measure(stream, &psnr, &worst); !e.ok()) return e;
+      if (psnr >= options.psnr || d == 0) break;
+      d /= 2;
+    }
+    if (stream.size() < best.size()) {
+      candidate.swap(stream);
+      candidate_d = d;
+    }
+  }
+  if (candidate.empty()) return finish(std::move(best), best_delta, 0);
+  used = &predictive_enc;
+  return finish(std::move(candidate), static_cast<double>(2 * candidate_d + 1), 0);
 }
 
 }  // namespace mrsv
