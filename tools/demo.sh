@@ -38,7 +38,7 @@ inputs=(
 )
 
 echo
-echo "== 1. lossless wavelet coding (cubic B-spline wavelets + exact residual) =="
+echo "== 1. lossless coding (the smaller of: wavelet bands + exact residual, predicted samples) =="
 report=()
 for entry in "${inputs[@]}"; do
   IFS='|' read -r name file dims type extra <<<"$entry"

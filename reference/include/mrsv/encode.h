@@ -30,7 +30,9 @@ struct RegionOfInterest {
 // quality is set by exactly one of: step, bits_per_sample, psnr, max_error
 // (max_error 0 is lossless), keep_fraction.
 struct WaveletEncodeOptions {
-  int order = 2;              // 1 Haar, 2 linear (best measured, spec 5.9), 3 quadratic, 4 cubic
+  // kWaveletOrderCdf97 (spec 4.11; best measured, 5.9), or a B-spline order: 1 Haar,
+  // 2 linear (the best B-spline), 3 quadratic, 4 cubic.
+  int order = kWaveletOrderCdf97;
   uint8_t entropy_mode = kEntropyAdaptive;  // or kEntropyBaseline (the paper's JPEG-like coder)
   int max_levels = 16;        // per axis; fewer when the axis is short (padding <= 1/32)
   double step = 0;            // base quantiser step in sample units
