@@ -20,14 +20,6 @@ inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 }  // namespace
 
-Quadric Quadric::plane(const Vec3& n, double d, double weight) {
-  Quadric r;
-  const double a = n[0], b = n[1], c = n[2];
-  r.q = {weight * a * a, weight * a * b, weight * a * c, weight * a * d, weight * b * b,
-         weight * b * c, weight * b * d, weight * c * c, weight * c * d, weight * d * d};
-  return r;
-}
-
 bool Quadric::constrainedMinimizer(const Vec3& g, double offset, Vec3* out) const {
   // With A the 3x3 part and b = (q3, q6, q8), the free minimiser is
   // x0 = -A^-1 b; on the plane g . x = offset the minimiser is
@@ -82,14 +74,17 @@ TrianglePlane trianglePlane(const Vec3& a, const Vec3& b, const Vec3& c) {
 void vertexQuadric(const EdgeTopology& topo, const std::vector<Vec3>& positions,
                    const std::vector<TrianglePlane>& planes, uint32_t v, double boundary_weight,
                    Quadric* quadric, VolumeTerm* volume) {
-  *quadric = Quadric{};
-  *volume = VolumeTerm{};
+  // The sums build up in locals and are stored once: accumulating through the
+  // pointers made the compiler store all 14 values after every triangle (they
+  // might alias the planes), and this runs for every vertex a collapse touches.
+  Quadric sum;
+  VolumeTerm enclosed;
   const bool boundary = topo.onBoundary(v);
   topo.forEachOutgoing(v, [&](uint32_t h) {
     const TrianglePlane& t = planes[EdgeTopology::triangleOf(h)];
-    volume->add({t.n, t.offset});
+    enclosed.add({t.n, t.offset});
     if (!(t.quadric_scale > 0.0)) return;
-    quadric->add(Quadric::plane(t.n, -t.offset, t.quadric_scale));
+    sum.addPlane(t.n, -t.offset, t.quadric_scale);
     if (!boundary) return;
     // The fan's boundary edges: the outgoing one of its first triangle and the
     // incoming one of its last; both are edges of this triangle through v.
@@ -101,9 +96,11 @@ void vertexQuadric(const EdgeTopology& topo, const std::vector<Vec3>& positions,
       const double ml = length(m);
       if (!(ml > 0.0)) continue;
       m = {m[0] / ml, m[1] / ml, m[2] / ml};
-      quadric->add(Quadric::plane(m, -dot(m, e0), boundary_weight * dot(along, along)));
+      sum.addPlane(m, -dot(m, e0), boundary_weight * dot(along, along));
     }
   });
+  *quadric = sum;
+  *volume = enclosed;
 }
 
 Vec3 vertexNormal(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t v) {

@@ -17,11 +17,24 @@ namespace mrsv::simplify {
 struct Quadric {
   std::array<double, 10> q{};
 
-  // weight * (n . p + d)^2 (with |n| = 1, weight times the squared distance
-  // to the plane n . p + d = 0).
-  static Quadric plane(const Vec3& n, double d, double weight);
   void add(const Quadric& o) {
     for (int i = 0; i < 10; ++i) q[i] += o.q[i];
+  }
+  // Adds weight * (n . p + d)^2 (with |n| = 1, weight times the squared
+  // distance to the plane n . p + d = 0), in place: this is the innermost
+  // loop of the quadric updates, and a temporary Quadric was built in memory.
+  void addPlane(const Vec3& n, double d, double weight) {
+    const double a = n[0], b = n[1], c = n[2];
+    q[0] += weight * a * a;
+    q[1] += weight * a * b;
+    q[2] += weight * a * c;
+    q[3] += weight * a * d;
+    q[4] += weight * b * b;
+    q[5] += weight * b * c;
+    q[6] += weight * b * d;
+    q[7] += weight * c * c;
+    q[8] += weight * c * d;
+    q[9] += weight * d * d;
   }
   double evaluate(const Vec3& p) const {
     const double x = p[0], y = p[1], z = p[2];

@@ -11,8 +11,7 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
     *error = "mesh too large for 32-bit half-edge indices";
     return false;
   }
-  corner_.assign(3 * num_triangles, kNone);
-  opposite_.assign(3 * num_triangles, kNone);
+  he_.assign(3 * num_triangles, HalfEdge{kNone, kNone});
   outgoing_.assign(num_vertices, kNone);
   live_triangles_ = num_triangles;
   for (size_t t = 0; t < num_triangles; ++t) {
@@ -22,7 +21,7 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
         *error = "triangle " + std::to_string(t) + " has a vertex index out of range";
         return false;
       }
-      corner_[3 * t + i] = tri[i];
+      he_[3 * t + i].corner = tri[i];
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
       *error = "triangle " + std::to_string(t) + " repeats a vertex";
@@ -33,14 +32,14 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
   // Half-edges grouped by origin (counting sort), so that pairing a half-edge
   // with its opposite only scans the target's few outgoing half-edges.
   std::vector<uint32_t> first(num_vertices + 1, 0);
-  for (uint32_t v : corner_) ++first[v + 1];
+  for (const HalfEdge& e : he_) ++first[e.corner + 1];
   for (size_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
   // (target, half-edge) pairs by origin, so the scans below stay within two
-  // short contiguous lists instead of chasing corner_.
-  std::vector<std::pair<uint32_t, uint32_t>> by_origin(corner_.size());
+  // short contiguous lists instead of chasing he_.
+  std::vector<std::pair<uint32_t, uint32_t>> by_origin(he_.size());
   {
     std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    for (uint32_t h = 0; h < corner_.size(); ++h) by_origin[fill[corner_[h]]++] = {target(h), h};
+    for (uint32_t h = 0; h < he_.size(); ++h) by_origin[fill[he_[h].corner]++] = {target(h), h};
   }
   for (uint32_t u = 0; u < num_vertices; ++u) {
     for (uint32_t k = first[u]; k < first[u + 1]; ++k) {
@@ -54,7 +53,7 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
       }
       for (uint32_t j = first[w]; j < first[w + 1]; ++j) {
         if (by_origin[j].first == u) {
-          opposite_[h] = by_origin[j].second;
+          he_[h].opposite = by_origin[j].second;
           break;
         }
       }
@@ -64,7 +63,7 @@ bool EdgeTopology::build(const TriangleMesh& mesh, std::string* error) {
   for (uint32_t v = 0; v < num_vertices; ++v) {
     if (first[v] == first[v + 1]) continue;  // unused vertex: stays dead
     settleOutgoing(v, by_origin[first[v]].second);
-    boundary_[v] = opposite_[outgoing_[v]] == kNone;
+    boundary_[v] = he_[outgoing_[v]].opposite == kNone;
     uint32_t fan = 0;
     forEachOutgoing(v, [&](uint32_t) { ++fan; });
     if (fan != first[v + 1] - first[v]) {
@@ -79,7 +78,7 @@ void EdgeTopology::settleOutgoing(uint32_t v, uint32_t any_outgoing) {
   // Clockwise (h -> next(opposite(h))) until the boundary or back to the start.
   uint32_t h = any_outgoing;
   for (;;) {
-    const uint32_t o = opposite_[h];
+    const uint32_t o = he_[h].opposite;
     if (o == kNone) break;
     h = next(o);
     if (h == any_outgoing) break;
@@ -96,28 +95,28 @@ uint32_t EdgeTopology::findHalfEdge(uint32_t a, uint32_t b) const {
       found = h;
       break;
     }
-    h = opposite_[prev(h)];
+    h = he_[prev(h)].opposite;
   } while (h != kNone && h != start);
   return found;
 }
 
 void EdgeTopology::collapse(uint32_t removed, uint32_t kept, uint32_t h) {
-  const uint32_t twin = opposite_[h];
-  const uint32_t h_rk = corner_[h] == removed ? h : twin;  // removed -> kept, or kNone
-  const uint32_t h_kr = corner_[h] == removed ? twin : h;  // kept -> removed, or kNone
+  const uint32_t twin = he_[h].opposite;
+  const uint32_t h_rk = he_[h].corner == removed ? h : twin;  // removed -> kept, or kNone
+  const uint32_t h_kr = he_[h].corner == removed ? twin : h;  // kept -> removed, or kNone
 
   // Every corner of `removed` becomes a corner of `kept` (the dying triangles'
   // too, which is harmless since they are cleared below).
-  forEachOutgoing(removed, [&](uint32_t g) { corner_[g] = kept; });
+  forEachOutgoing(removed, [&](uint32_t g) { he_[g].corner = kept; });
 
   auto glue = [&](uint32_t x, uint32_t y) {
-    if (x != kNone) opposite_[x] = y;
-    if (y != kNone) opposite_[y] = x;
+    if (x != kNone) he_[x].opposite = y;
+    if (y != kNone) he_[y].opposite = x;
   };
   auto kill = [&](uint32_t t) {
     for (int i = 0; i < 3; ++i) {
-      corner_[3 * t + i] = kNone;
-      opposite_[3 * t + i] = kNone;
+      he_[3 * t + i].corner = kNone;
+      he_[3 * t + i].opposite = kNone;
     }
     --live_triangles_;
   };
@@ -134,12 +133,12 @@ void EdgeTopology::collapse(uint32_t removed, uint32_t kept, uint32_t h) {
     if (g == kNone) continue;
     const uint32_t n = next(g);
     const uint32_t p = prev(g);
-    const uint32_t on = opposite_[n];
-    const uint32_t op = opposite_[p];
+    const uint32_t on = he_[n].opposite;
+    const uint32_t op = he_[p].opposite;
     // For (removed, kept, x): on is x -> kept, op becomes kept -> x. For
     // (kept, removed, y): on becomes y -> kept, op is kept -> y. Either way on
     // leaves the apex and op leaves `kept`, and next() of one leaves the other.
-    apex[side] = corner_[p];
+    apex[side] = he_[p].corner;
     apex_out[side] = on != kNone ? on : next(op);
     if (kept_out == kNone) kept_out = op != kNone ? op : next(on);
     glue(on, op);
@@ -156,10 +155,10 @@ void EdgeTopology::collapse(uint32_t removed, uint32_t kept, uint32_t h) {
 bool EdgeTopology::validate(std::string* error) const {
   const uint32_t nv = numVertices();
   std::vector<uint32_t> corners_of(nv, 0);
-  for (uint32_t h = 0; h < corner_.size(); ++h) {
-    const uint32_t v = corner_[h];
+  for (uint32_t h = 0; h < he_.size(); ++h) {
+    const uint32_t v = he_[h].corner;
     if (v == kNone) {
-      if (corner_[3 * triangleOf(h)] != kNone || opposite_[h] != kNone) {
+      if (he_[3 * triangleOf(h)].corner != kNone || he_[h].opposite != kNone) {
         *error = "half-edge " + std::to_string(h) + " of a dead triangle is partly alive";
         return false;
       }
@@ -174,9 +173,9 @@ bool EdgeTopology::validate(std::string* error) const {
       *error = "triangle " + std::to_string(triangleOf(h)) + " is degenerate";
       return false;
     }
-    const uint32_t o = opposite_[h];
+    const uint32_t o = he_[h].opposite;
     if (o != kNone) {
-      if (o >= corner_.size() || opposite_[o] != h || corner_[o] != target(h) ||
+      if (o >= he_.size() || he_[o].opposite != h || he_[o].corner != target(h) ||
           target(o) != v || triangleOf(o) == triangleOf(h)) {
         *error = "half-edge " + std::to_string(h) + " is badly paired";
         return false;
@@ -198,7 +197,7 @@ bool EdgeTopology::validate(std::string* error) const {
       }
       continue;
     }
-    if (corner_[outgoing_[v]] != v) {
+    if (he_[outgoing_[v]].corner != v) {
       *error = "vertex " + std::to_string(v) + " has a foreign outgoing half-edge";
       return false;
     }
@@ -206,13 +205,13 @@ bool EdgeTopology::validate(std::string* error) const {
     bool boundary_seen = false;
     forEachOutgoing(v, [&](uint32_t h) {
       ++fan;
-      boundary_seen |= opposite_[h] == kNone;
+      boundary_seen |= he_[h].opposite == kNone;
     });
     if (fan != corners_of[v]) {
       *error = "vertex " + std::to_string(v) + " has more than one fan";
       return false;
     }
-    if (boundary_seen != (opposite_[outgoing_[v]] == kNone) || boundary_seen != (boundary_[v] != 0)) {
+    if (boundary_seen != (he_[outgoing_[v]].opposite == kNone) || boundary_seen != (boundary_[v] != 0)) {
       *error = "vertex " + std::to_string(v) + " has a stale boundary flag or does not start its fan at the boundary";
       return false;
     }
@@ -230,7 +229,7 @@ bool EdgeTopology::validate(std::string* error) const {
 void EdgeTopology::liveTriangleList(std::vector<std::array<uint32_t, 3>>* out) const {
   out->clear();
   for (uint32_t t = 0; t < numTriangles(); ++t) {
-    if (triangleAlive(t)) out->push_back({corner_[3 * t], corner_[3 * t + 1], corner_[3 * t + 2]});
+    if (triangleAlive(t)) out->push_back({he_[3 * t].corner, he_[3 * t + 1].corner, he_[3 * t + 2].corner});
   }
 }
 

@@ -8,15 +8,19 @@
 // A collapse therefore changes the quadrics of the kept vertex and of all its
 // neighbours, and the costs of every edge around those. All of these
 // vertices are locked for the rest of the batch, so none of those edges can
-// be taken before it ends; then the quadrics are recomputed (once per vertex,
-// however many collapses of the batch touched it) and the candidates around
-// each kept vertex, whose shape changed, are recomputed too. The other
-// candidates around the neighbours, of which only one end's quadric changed,
-// are marked outdated by the vertices' change counters and recomputed only
-// when a batch is about to take them: few ever are, and recomputing them all
-// would triple the work. A direction that fails the checks is not tried
-// again until a collapse changes the neighbourhood of one of the edge's
-// endpoints, which is when its outcome can change.
+// be taken before it ends. The quadrics are recomputed right after the
+// collapse, while its neighbourhood is still in the cache, and so are the
+// candidates around the kept vertex, whose shape changed (and again, should a
+// later collapse of the batch change the other end of one of them). The
+// other candidates around the neighbours, of which only one end's quadric
+// changed, are marked outdated by the vertices' change counters and
+// recomputed only when a batch is about to take them: few ever are, and
+// recomputing them all would triple the work. (With the paper's energies,
+// which depend on more than the two ends, all of this waits for the end of
+// the batch, and every candidate around a changed vertex is recomputed.) A
+// direction that fails the checks is not tried again until a collapse
+// changes the neighbourhood of one of the edge's endpoints, which is when
+// its outcome can change.
 //
 // A batch is one pass in cost order: every candidate up to batch_cost_ratio
 // times the cheapest one, or up to the batch_min_fraction quantile of the
@@ -66,10 +70,45 @@ struct Entry {
   uint32_t h;  // the edge's canonical half-edge
 };
 
-inline bool cheaper(const Entry& a, const Entry& b) {
-  // A total order, so the result never depends on the sort's internals.
+// What the simplifier keeps per canonical half-edge: its candidate (cost and
+// direction), which directions failed the checks (bit d for direction d),
+// after how many collapses the candidate (or the failure) was computed, and
+// whether the edge is in the list of live edges, and whether the half-edge
+// is the canonical one of a live edge (so the scan of the list need not look
+// at the topology). One struct rather than one array per field: refreshing
+// or scanning an edge then costs one cache miss, not six, and on large
+// meshes those misses were most of the time.
+struct EdgeState {
+  double cost = 0.0;
+  uint32_t evaluated_at = 0;
+  uint8_t direction = kNoDirection;
+  uint8_t failed = 0;
+  uint8_t listed = 0;
+  uint8_t live = 0;
+};
+
+// Per vertex: the batch that last locked it, the number of collapses made
+// when its neighbourhood last changed, the last batch in which it was a kept
+// vertex, and (the paper's energies) the last batch whose refresh recomputed
+// its normal; read together when a batch locks or refreshes.
+struct VertexState {
+  uint32_t locked_in_batch = 0;
+  uint32_t changed_at = 0;
+  uint32_t kept_in_batch = 0;
+  uint32_t refreshed_in = 0;
+};
+
+// A vertex's quadric and volume term, which every cost reads together.
+struct VertexTerms {
+  Quadric quadric;
+  simplify::VolumeTerm volume;
+};
+
+// A total order, so the result never depends on the sort's internals. (A
+// lambda, not a function: std::sort then inlines it.)
+constexpr auto cheaper = [](const Entry& a, const Entry& b) {
   return a.cost < b.cost || (a.cost == b.cost && a.h < b.h);
-}
+};
 
 class Simplifier {
  public:
@@ -98,8 +137,8 @@ class Simplifier {
   // and not yet failed.
   void chooseDirection(uint32_t h);
   void refreshEdge(uint32_t h) {
-    failed_[h] = 0;
-    evaluated_at_[h] = collapses_;
+    edge_[h].failed = 0;
+    edge_[h].evaluated_at = collapses_;
     chooseDirection(h);
   }
   void refreshEdgesAround(uint32_t v);
@@ -110,49 +149,57 @@ class Simplifier {
   // Whether a collapse changed the neighbourhood of an end of edge h since
   // its candidate was computed.
   bool outdated(uint32_t h) const {
-    return std::max(changed_at_[topo_.vertexOf(h)], changed_at_[topo_.target(h)]) > evaluated_at_[h];
+    return std::max(vertex_[topo_.vertexOf(h)].changed_at, vertex_[topo_.target(h)].changed_at) > edge_[h].evaluated_at;
   }
-  // After a batch: new quadrics (and normals) for the vertices its collapses
-  // changed, then new candidates for the edges around the kept vertices
-  // (around all changed vertices for the paper's energies).
-  void refreshChanged();
+  // Calls f(c) for the canonical half-edge c of every edge of live vertex v.
+  template <typename F>
+  void forEachEdgeAround(uint32_t v, F&& f) const;
+  // Quadric costs, right after a collapse: new quadrics for the kept vertex
+  // and its neighbours, then new candidates for the edges around the kept
+  // vertex and for those that this collapse outdated around the kept
+  // vertices of earlier collapses of the batch.
+  void refreshAfterCollapse(uint32_t kept);
+  // After a batch, the paper's energies only: new quadrics and normals for
+  // the vertices the batch's collapses changed, then new candidates for the
+  // edges around all of them.
+  void refreshAfterBatch();
   // Tries the current candidate of edge h; on failure marks the direction and
   // returns false.
   bool consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* position);
   void lockNeighbourhood(uint32_t v);
+  // Collapses edge h, `removed` into `kept`, and keeps EdgeState::live
+  // current.
+  void collapse(uint32_t h, uint32_t removed, uint32_t kept);
 
   const SimplifyOptions& options_;
   EdgeTopology topo_;
   std::vector<Vec3> positions_;
-  // Per vertex: its memoryless quadric and its fan's volume term.
-  std::vector<Quadric> quadrics_;
-  std::vector<simplify::VolumeTerm> volumes_;
+  // Per vertex: its memoryless quadric and its fan's volume term, side by
+  // side because every cost reads both of both endpoints.
+  std::vector<VertexTerms> terms_;
   // Per triangle: its plane, kept current as vertices move.
   std::vector<simplify::TrianglePlane> planes_;
   std::vector<Vec3> normals_;  // CollapseCost::kPaper only
-  // Per canonical half-edge: the candidate, which directions failed the
-  // checks (bit d for direction d), and after how many collapses the
-  // candidate (or the failure) was computed.
-  std::vector<double> edge_cost_;
-  std::vector<uint8_t> direction_;
-  std::vector<uint8_t> failed_;
-  std::vector<uint32_t> evaluated_at_;
-  // Per vertex: the batch that last locked it, and the number of collapses
-  // made when its neighbourhood last changed.
-  std::vector<uint32_t> locked_in_batch_;
-  std::vector<uint32_t> changed_at_;
-  // The vertices whose fan a collapse of this batch changed (with repeats)
-  // and the kept vertices among them; per vertex and per half-edge the last
-  // batch that refreshed it.
+  // Per canonical half-edge (EdgeState).
+  std::vector<EdgeState> edge_;
+  // Per vertex (VertexState).
+  std::vector<VertexState> vertex_;
+  // The paper's energies: the vertices whose fan a collapse of this batch
+  // changed, with repeats, and the kept vertices among them. Quadric costs:
+  // the vertices that this collapse locked when an earlier collapse of the
+  // batch had locked them already (refreshAfterCollapse()).
   std::vector<uint32_t> changed_;
   std::vector<uint32_t> kept_in_batch_;
-  std::vector<uint32_t> vertex_refreshed_in_;
+  std::vector<uint32_t> relocked_;
+  // Per half-edge, the last batch that refreshed it (the paper's energies
+  // only: see refreshEdgesAround()).
   std::vector<uint32_t> edge_refreshed_in_;
-  // The canonical half-edges of the live edges, with listed_ marking them. An
-  // edge whose canonical half-edge changes is one around a kept vertex, and
-  // gets its new one appended; the list drops stale entries every batch.
+  // The canonical half-edges of the live edges, with EdgeState::listed
+  // marking them. An edge whose canonical half-edge changes is one around a
+  // kept vertex, and gets its new one appended; the list drops stale entries
+  // every batch.
   std::vector<uint32_t> edges_;
-  std::vector<uint8_t> listed_;
+  std::vector<Entry> candidates_;
   std::vector<Entry> pool_;
   std::vector<double> sample_;
   std::vector<uint32_t> scratch_;
@@ -177,8 +224,7 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
   }
   const uint32_t nv = topo_.numVertices();
   const size_t nh = 3 * static_cast<size_t>(topo_.numTriangles());
-  locked_in_batch_.assign(nv, 0);
-  changed_at_.assign(nv, 0);
+  vertex_.assign(nv, VertexState{});
   marks_.resize(nv);
   for (uint32_t v = 0; v < nv; ++v) live_vertices_ += topo_.alive(v);
 
@@ -203,12 +249,10 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
   for (uint32_t t = 0; t < topo_.numTriangles(); ++t) {
     if (topo_.triangleAlive(t)) updatePlane(t);
   }
-  quadrics_.assign(nv, Quadric{});
-  volumes_.assign(nv, simplify::VolumeTerm{});
-  vertex_refreshed_in_.assign(nv, 0);
+  terms_.assign(nv, VertexTerms{});
   for (uint32_t v = 0; v < nv; ++v) {
     if (topo_.alive(v)) {
-      simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &quadrics_[v], &volumes_[v]);
+      simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &terms_[v].quadric, &terms_[v].volume);
     }
   }
   if (options_.cost == CollapseCost::kPaper) {
@@ -224,17 +268,14 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
     cost_floor_ = 1e-12 * unit * unit * unit * unit;
   }
 
-  edge_cost_.assign(nh, 0.0);
-  direction_.assign(nh, kNoDirection);
-  failed_.assign(nh, 0);
-  evaluated_at_.assign(nh, 0);
-  listed_.assign(nh, 0);
-  edge_refreshed_in_.assign(nh, 0);
+  edge_.assign(nh, EdgeState{});
+  if (options_.cost == CollapseCost::kPaper) edge_refreshed_in_.assign(nh, 0);
 
   for (uint32_t h = 0; h < nh; ++h) {
     if (canonical(h) == h) {
       edges_.push_back(h);
-      listed_[h] = 1;
+      edge_[h].listed = 1;
+      edge_[h].live = 1;
       chooseDirection(h);
     }
   }
@@ -247,8 +288,8 @@ bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* positi
     *position = pk;
     return false;
   }
-  Quadric q = quadrics_[removed];
-  q.add(quadrics_[kept]);
+  Quadric q = terms_[removed].quadric;
+  q.add(terms_[kept].quadric);
   const Vec3& pr = positions_[removed];
   if (topo_.edgeOnBoundary(h)) {
     // A boundary vertex only ever takes the place of another one, so that
@@ -267,8 +308,8 @@ bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* positi
     // as the two old ones, so the simplified surface does not drift inwards
     // on convex parts (or outwards on concave ones) as plain quadric optima
     // do. The fans share the edge's triangles, which count once.
-    simplify::VolumeTerm volume = volumes_[removed];
-    volume.add(volumes_[kept]);
+    simplify::VolumeTerm volume = terms_[removed].volume;
+    volume.add(terms_[kept].volume);
     auto subtractTriangle = [&](uint32_t t) { volume.subtract({planes_[t].n, planes_[t].offset}); };
     subtractTriangle(EdgeTopology::triangleOf(h));
     const uint32_t twin = topo_.opposite(h);
@@ -287,7 +328,7 @@ bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* positi
 
 double Simplifier::cost(uint32_t removed, uint32_t kept, const Vec3& position, bool moves) const {
   if (options_.cost == CollapseCost::kQuadric) {
-    return quadrics_[removed].evaluate(position) + quadrics_[kept].evaluate(position);
+    return terms_[removed].quadric.evaluate(position) + terms_[kept].quadric.evaluate(position);
   }
   return simplify::paperEnergy(topo_, positions_, normals_, removed, kept, position, moves, paper_);
 }
@@ -295,12 +336,12 @@ double Simplifier::cost(uint32_t removed, uint32_t kept, const Vec3& position, b
 void Simplifier::chooseDirection(uint32_t h) {
   const uint32_t a = topo_.vertexOf(h);
   const uint32_t b = topo_.target(h);
-  direction_[h] = kNoDirection;
+  edge_[h].direction = kNoDirection;
   if (symmetric(h)) {
-    if (failed_[h] != 0) return;  // both directions fail alike
+    if (edge_[h].failed != 0) return;  // both directions fail alike
     Vec3 position;
     place(a, b, h, &position);
-    edge_cost_[h] = cost(a, b, position, true);
+    edge_[h].cost = cost(a, b, position, true);
     // Keeping the end nearer the new position makes the coded move smaller.
     const Vec3& pa = positions_[a];
     const Vec3& pb = positions_[b];
@@ -310,42 +351,54 @@ void Simplifier::chooseDirection(uint32_t h) {
     const double to_b = (position[0] - pb[0]) * (position[0] - pb[0]) +
                         (position[1] - pb[1]) * (position[1] - pb[1]) +
                         (position[2] - pb[2]) * (position[2] - pb[2]);
-    direction_[h] = to_b <= to_a ? kOriginGoes : kTargetGoes;
+    edge_[h].direction = to_b <= to_a ? kOriginGoes : kTargetGoes;
     return;
   }
   for (uint8_t d : {kOriginGoes, kTargetGoes}) {
-    if (failed_[h] & (1u << d)) continue;
+    if (edge_[h].failed & (1u << d)) continue;
     const uint32_t removed = d == kOriginGoes ? a : b;
     const uint32_t kept = d == kOriginGoes ? b : a;
     if (!simplify::boundaryRuleAllows(topo_, removed, h)) continue;
     Vec3 position;
     const bool moves = place(removed, kept, h, &position);
     const double c = cost(removed, kept, position, moves);
-    if (direction_[h] == kNoDirection || c < edge_cost_[h]) {
-      direction_[h] = d;
-      edge_cost_[h] = c;
+    if (edge_[h].direction == kNoDirection || c < edge_[h].cost) {
+      edge_[h].direction = d;
+      edge_[h].cost = c;
     }
   }
 }
 
-void Simplifier::refreshEdgesAround(uint32_t v) {
+template <typename F>
+void Simplifier::forEachEdgeAround(uint32_t v, F&& f) const {
   uint32_t last = kNone;
-  auto refresh = [&](uint32_t c) {
-    if (edge_refreshed_in_[c] == batch_number_) return;
-    edge_refreshed_in_[c] = batch_number_;
-    refreshEdge(c);
-    if (!listed_[c]) {
-      listed_[c] = 1;
-      edges_.push_back(c);
-    }
-  };
   topo_.forEachOutgoing(v, [&](uint32_t h) {
-    refresh(canonical(h));
+    f(canonical(h));
     last = h;
   });
   // The last edge of a boundary fan is reached only by its incoming half-edge.
   const uint32_t incoming = EdgeTopology::prev(last);
-  if (topo_.edgeOnBoundary(incoming)) refresh(incoming);
+  if (topo_.edgeOnBoundary(incoming)) f(incoming);
+}
+
+void Simplifier::refreshEdgesAround(uint32_t v) {
+  // With the paper's energies the edges around every changed vertex are
+  // refreshed, and neighbours share edges, so each is refreshed once per
+  // batch. With quadrics only the kept vertices' edges are, and kept vertices
+  // of one batch are never adjacent (they are locked with their
+  // neighbourhoods), so no edge comes twice and the check is skipped.
+  const bool paper = options_.cost == CollapseCost::kPaper;
+  forEachEdgeAround(v, [&](uint32_t c) {
+    if (paper) {
+      if (edge_refreshed_in_[c] == batch_number_) return;
+      edge_refreshed_in_[c] = batch_number_;
+    }
+    refreshEdge(c);
+    if (!edge_[c].listed) {
+      edge_[c].listed = 1;
+      edges_.push_back(c);
+    }
+  });
 }
 
 bool Simplifier::consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* position) {
@@ -354,45 +407,95 @@ bool Simplifier::consistent(uint32_t h, uint32_t removed, uint32_t kept, Vec3* p
       simplify::geometryAllows(topo_, positions_, removed, kept, *position, moves, limits_)) {
     return true;
   }
-  failed_[h] |= static_cast<uint8_t>(symmetric(h) ? 3u : 1u << direction_[h]);
-  evaluated_at_[h] = collapses_;
+  edge_[h].failed |= static_cast<uint8_t>(symmetric(h) ? 3u : 1u << edge_[h].direction);
+  edge_[h].evaluated_at = collapses_;
   chooseDirection(h);
   return false;
 }
 
-void Simplifier::lockNeighbourhood(uint32_t v) {
-  locked_in_batch_[v] = batch_number_;
-  changed_at_[v] = collapses_;
-  topo_.forEachNeighbour(v, [&](uint32_t w) {
-    locked_in_batch_[w] = batch_number_;
-    changed_at_[w] = collapses_;
+void Simplifier::collapse(uint32_t h, uint32_t removed, uint32_t kept) {
+  const uint32_t twin = topo_.opposite(h);
+  topo_.collapse(removed, kept, h);
+  // The edge's one or two triangles die with their half-edges. The other
+  // edges of those triangles merge pairwise into edges of `kept`, whose
+  // half-edges are paired anew; nothing else changes its pairing. So every
+  // half-edge that stopped (or started) being the canonical one of a live
+  // edge is either dead or on an edge around `kept`.
+  for (uint32_t g : {h, twin}) {
+    if (g == kNone) continue;
+    const uint32_t first = 3 * EdgeTopology::triangleOf(g);
+    for (uint32_t i = 0; i < 3; ++i) edge_[first + i].live = 0;
+  }
+  forEachEdgeAround(kept, [&](uint32_t c) {
+    edge_[c].live = 1;
+    const uint32_t o = topo_.opposite(c);
+    if (o != kNone) edge_[o].live = 0;
   });
 }
 
-void Simplifier::refreshChanged() {
-  const bool paper = options_.cost == CollapseCost::kPaper;
-  scratch_.clear();
-  for (uint32_t v : changed_) {
-    if (!topo_.alive(v) || vertex_refreshed_in_[v] == batch_number_) continue;
-    vertex_refreshed_in_[v] = batch_number_;
-    scratch_.push_back(v);
-    simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &quadrics_[v], &volumes_[v]);
-    if (paper) normals_[v] = simplify::vertexNormal(topo_, positions_, v);
-  }
-  changed_.clear();
+void Simplifier::lockNeighbourhood(uint32_t v) {
+  auto lock = [&](uint32_t w) {
+    VertexState& state = vertex_[w];
+    // Locked by an earlier collapse of this batch (not by the other end of
+    // this one): that collapse's candidates may now be outdated.
+    if (state.locked_in_batch == batch_number_ && state.changed_at != collapses_) relocked_.push_back(w);
+    state.locked_in_batch = batch_number_;
+    state.changed_at = collapses_;
+  };
+  lock(v);
+  topo_.forEachNeighbour(v, lock);
+}
+
+void Simplifier::refreshAfterCollapse(uint32_t kept) {
+  // Done now, while the neighbourhood the collapse just walked is in the
+  // cache; after the batch, thousands of collapses later, every one of these
+  // reads was a cache miss. The results are the same as if it were all done
+  // after the batch: the vertices changed here are locked, so no later
+  // collapse of the batch reads their quadrics or takes an edge around the
+  // kept vertex.
+  auto update = [&](uint32_t v) {
+    simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &terms_[v].quadric, &terms_[v].volume);
+  };
+  update(kept);
+  topo_.forEachNeighbour(kept, update);
   // The edges around a kept vertex changed shape, and their costs change
   // most: they are recomputed now. Around its neighbours only one end's
   // quadric changed; those candidates are outdated (outdated()) and are
-  // recomputed only when a batch is about to take them, which few are. The
-  // paper's energies, which the sort order depends on more, are recomputed
-  // now.
+  // recomputed only when a batch is about to take them, which few are.
+  refreshEdgesAround(kept);
+  // A neighbour that an earlier collapse of the batch had locked already may
+  // be a neighbour of that collapse's kept vertex too: the candidate of their
+  // edge, computed after that collapse, is now outdated and is recomputed
+  // with the neighbour's new quadric. (About one per collapse: a batch packs
+  // its collapses so that their neighbourhoods touch.)
+  for (uint32_t w : relocked_) {
+    forEachEdgeAround(w, [&](uint32_t c) {
+      const uint32_t other = topo_.vertexOf(c) == w ? topo_.target(c) : topo_.vertexOf(c);
+      if (other != kept && vertex_[other].kept_in_batch == batch_number_) refreshEdge(c);
+    });
+  }
+  relocked_.clear();
+}
+
+void Simplifier::refreshAfterBatch() {
+  if (options_.cost == CollapseCost::kQuadric) return;  // refreshAfterCollapse() did it all
+  relocked_.clear();  // not needed: every candidate around a changed vertex is recomputed
+  scratch_.clear();
+  for (uint32_t v : changed_) {
+    if (!topo_.alive(v) || vertex_[v].refreshed_in == batch_number_) continue;
+    vertex_[v].refreshed_in = batch_number_;
+    scratch_.push_back(v);
+    simplify::vertexQuadric(topo_, positions_, planes_, v, kBoundaryWeight, &terms_[v].quadric, &terms_[v].volume);
+    normals_[v] = simplify::vertexNormal(topo_, positions_, v);
+  }
+  changed_.clear();
+  // The paper's energies, which the sort order depends on more, are
+  // recomputed around every changed vertex.
   for (uint32_t v : kept_in_batch_) {
     if (topo_.alive(v)) refreshEdgesAround(v);
   }
   kept_in_batch_.clear();
-  if (paper) {
-    for (uint32_t v : scratch_) refreshEdgesAround(v);
-  }
+  for (uint32_t v : scratch_) refreshEdgesAround(v);
 }
 
 void Simplifier::run(SimplifyResult* result) {
@@ -425,20 +528,22 @@ void Simplifier::run(SimplifyResult* result) {
       double cheapest = std::numeric_limits<double>::infinity();
       size_t kept_edges = 0;
       sample_.clear();
+      candidates_.clear();
       for (size_t i = 0; i < edges_.size(); ++i) {
         const uint32_t h = edges_[i];
-        const uint32_t a = topo_.vertexOf(h);
-        if (a == kNone || canonical(h) != h) {
-          listed_[h] = 0;
+        EdgeState& edge = edge_[h];
+        if (!edge.live) {
+          edge.listed = 0;
           continue;
         }
         edges_[kept_edges++] = h;
-        if (failed_[h] != 0 && outdated(h)) {
+        if (edge.failed != 0 && outdated(h)) {
           refreshEdge(h);  // the neighbourhood changed since the failure
         }
-        if (direction_[h] != kNoDirection) {
-          cheapest = std::min(cheapest, edge_cost_[h]);
-          if (kept_edges % kSampleStride == 0) sample_.push_back(edge_cost_[h]);
+        if (edge.direction != kNoDirection) {
+          cheapest = std::min(cheapest, edge.cost);
+          if (kept_edges % kSampleStride == 0) sample_.push_back(edge.cost);
+          candidates_.push_back({edge.cost, h});
         }
       }
       edges_.resize(kept_edges);
@@ -453,10 +558,12 @@ void Simplifier::run(SimplifyResult* result) {
         std::nth_element(sample_.begin(), sample_.begin() + k, sample_.end());
         limit = std::max(limit, sample_[k]);
       }
-      // Pass 2: the candidates within the limit, in cost order.
+      // Pass 2: the candidates within the limit, in cost order. (Pass 1
+      // copied the candidates into one dense array: reading them back from
+      // edge_ was a cache miss each once most edges are gone.)
       pool_.clear();
-      for (uint32_t h : edges_) {
-        if (direction_[h] != kNoDirection && edge_cost_[h] <= limit) pool_.push_back({edge_cost_[h], h});
+      for (const Entry& e : candidates_) {
+        if (e.cost <= limit) pool_.push_back(e);
       }
       std::sort(pool_.begin(), pool_.end(), cheaper);
 
@@ -465,19 +572,19 @@ void Simplifier::run(SimplifyResult* result) {
         const uint32_t a = topo_.vertexOf(h);
         if (a == kNone) continue;  // died in this batch (its ends are locked)
         const uint32_t b = topo_.target(h);
-        if (locked_in_batch_[a] == batch_number_ || locked_in_batch_[b] == batch_number_) continue;
+        if (vertex_[a].locked_in_batch == batch_number_ || vertex_[b].locked_in_batch == batch_number_) continue;
         if (outdated(h)) {
           refreshEdge(h);
-          if (direction_[h] == kNoDirection || edge_cost_[h] > limit) continue;
+          if (edge_[h].direction == kNoDirection || edge_[h].cost > limit) continue;
         }
         Vec3 position;
         uint32_t removed = 0, kept = 0;
         bool ok = false;
         // The candidate, and if it fails, the other direction if cheap enough.
         for (int attempt = 0; attempt < 2 && !ok; ++attempt) {
-          if (direction_[h] == kNoDirection || edge_cost_[h] > limit) break;
-          removed = direction_[h] == kOriginGoes ? a : b;
-          kept = direction_[h] == kOriginGoes ? b : a;
+          if (edge_[h].direction == kNoDirection || edge_[h].cost > limit) break;
+          removed = edge_[h].direction == kOriginGoes ? a : b;
+          kept = edge_[h].direction == kOriginGoes ? b : a;
           ok = consistent(h, removed, kept, &position);
         }
         if (!ok) continue;
@@ -487,15 +594,20 @@ void Simplifier::run(SimplifyResult* result) {
         ++collapses_;
         lockNeighbourhood(removed);
         lockNeighbourhood(kept);
-        topo_.collapse(removed, kept, h);
+        collapse(h, removed, kept);
         positions_[kept] = position;
         // Every triangle whose shape changed is now in the kept vertex's fan.
         topo_.forEachOutgoing(kept, [&](uint32_t e) { updatePlane(EdgeTopology::triangleOf(e)); });
         --live_vertices_;
         batch.push_back({removed, kept, position});
-        changed_.push_back(kept);
-        kept_in_batch_.push_back(kept);
-        topo_.forEachNeighbour(kept, [&](uint32_t w) { changed_.push_back(w); });
+        vertex_[kept].kept_in_batch = batch_number_;
+        if (options_.cost == CollapseCost::kPaper) {
+          kept_in_batch_.push_back(kept);
+          changed_.push_back(kept);
+          topo_.forEachNeighbour(kept, [&](uint32_t w) { changed_.push_back(w); });
+        } else {
+          refreshAfterCollapse(kept);
+        }
 
         if (topo_.liveTriangles() <= target) stop = true;
         if (collapses_ % kCheckInterval == 0) {
@@ -510,7 +622,7 @@ void Simplifier::run(SimplifyResult* result) {
     }
     if (batch.empty()) break;  // no consistent collapse is left
     result->batches.push_back(batch);
-    if (!stop) refreshChanged();
+    if (!stop) refreshAfterBatch();
   }
   result->final_triangles = topo_.liveTriangles();
   result->final_vertices = live_vertices_;
