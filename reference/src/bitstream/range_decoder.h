@@ -45,6 +45,23 @@ class RangeDecoder {
     return result;
   }
 
+  // bit() computed without a branch on the decoded bit, for bits near one half
+  // that a branch predictor cannot guess (signs, the bit below a leading one):
+  // a mispredicted branch costs more than computing both outcomes.
+  int bitUnpredictable(BitModel* model) {
+    const uint32_t p0 = model->p0;
+    const uint32_t bound = (range_ >> kProbabilityBits) * p0;
+    const uint32_t b = code_ >= bound ? 1u : 0u;
+    const uint32_t ones = 0u - b;  // all ones when the bit is 1
+    code_ -= bound & ones;
+    range_ = bound ^ ((bound ^ (range_ - bound)) & ones);
+    const uint32_t if0 = p0 + ((kProbabilityOne - p0) >> kAdaptShift);
+    const uint32_t if1 = p0 - (p0 >> kAdaptShift);
+    model->p0 = static_cast<uint16_t>(if0 ^ ((if0 ^ if1) & ones));
+    normalize();
+    return static_cast<int>(b);
+  }
+
   // spec: 5.6 decode_direct(n): n equiprobable bits, most significant first.
   uint32_t direct(int n) {
     uint32_t value = 0;

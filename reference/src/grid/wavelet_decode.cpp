@@ -12,6 +12,7 @@
 #include "bitstream/range_coder_adapter.h"
 #include "bitstream/range_decoder.h"
 #include "common/byte_reader.h"
+#include "grid/array_decoding.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "wavelet/axis_plan.h"
@@ -26,13 +27,15 @@ Error orderError(const ChunkView& chunk, std::string message) {
   return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(), std::move(message)};
 }
 
-// spec: 5.4 dequantisation: q * step, saturated to +-kValueLimit.
-int64_t dequantize(int64_t q, uint64_t step) {
-  if (q == 0) return 0;
-  uint64_t mag = magnitudeOf(q);
-  uint64_t limit = static_cast<uint64_t>(kValueLimit) / step;
-  int64_t v = mag > limit ? kValueLimit : static_cast<int64_t>(mag * step);
-  return q < 0 ? -v : v;
+// spec: 5.4 dequantizeSymbol() over a row of n values, with the test for
+// saturation, which rarely succeeds, hoisted out of the multiplication.
+void dequantizeRow(const int64_t* src, int64_t* dst, uint32_t n, uint64_t step) {
+  const uint64_t limit = static_cast<uint64_t>(kValueLimit) / step;
+  const int64_t signed_step = static_cast<int64_t>(step);
+  for (uint32_t x = 0; x < n; ++x) {
+    const int64_t q = src[x];
+    dst[x] = magnitudeOf(q) <= limit ? q * signed_step : dequantizeSymbol(q, step);
+  }
 }
 
 // floor((v + 2^(w-1)) / 2^w): round half up, for negative values too (spec 5.8.2).
@@ -43,27 +46,42 @@ int64_t roundShift(int64_t v, int w) {
   return t >= 0 ? t >> w : ~(~t >> w);
 }
 
-// Decodes one range-coded array payload; spec 5.6, 5.7.
+// Decodes one array payload: spec 5.6 and 5.7 (or 5.10 in the baseline mode).
+// Range-coded arrays without prediction (detail bands, mask, residual: nearly
+// every coded symbol) go straight to `out`, which may be strided and dequantise
+// (out.step), with `magnitudes` as scratch of box.count() entries. The others
+// need a contiguous `out` with step 0 (row_stride = X, slice_stride = X * Y)
+// and, with prediction, `symbols`: scratch of box.count() entries.
 Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t size,
                          uint64_t payload_offset, const char* field, const ArrayBox& box,
-                         ArrayPrediction prediction, const uint8_t* skip, int64_t* values,
-                         int64_t* symbols) {
+                         ArrayPrediction prediction, const uint8_t* skip,
+                         const ArrayDestination& out, int64_t* symbols, uint16_t* magnitudes) {
   auto fail = [&](std::string message) {
     return Error{Status::kBadEntropyPayload, payload_offset, field, std::move(message)};
   };
   if (entropy_mode == kEntropyBaseline) {  // spec: 5.10
-    std::string problem = decodeBaselineArray(payload, size, box, prediction, skip, values);
+    std::string problem = decodeBaselineArray(payload, size, box, prediction, skip, out.data);
     return problem.empty() ? Error{} : fail(problem);
   }
   RangeDecoder rc(payload, size);
   if (!rc.validStart()) return fail("coded data must start with a 0 byte");
-  DecodingCoder coder{&rc};
-  if (!codeArray(coder, values, symbols, box, prediction, skip))
-    return fail("a magnitude prefix is longer than 39 bits");
+  bool ok;
+  if (prediction == ArrayPrediction::kNone) {
+    ok = decodeUnpredictedArray(&rc, box, skip, out, magnitudes);
+  } else {
+    DecodingCoder coder{&rc};
+    ok = codeArray(coder, out.data, symbols, box, prediction, skip);
+  }
+  if (!ok) return fail("a magnitude prefix is longer than 39 bits");
   if (rc.overrun() != 0) return fail("coded data ends before the array does");
   if (rc.consumed() != size)
     return fail(std::to_string(size - rc.consumed()) + " bytes of coded data left over");
   return {};
+}
+
+// The destination of a contiguous array over `box`.
+ArrayDestination contiguous(int64_t* values, const ArrayBox& box) {
+  return {values, box.size[0], size_t{box.size[0]} * box.size[1]};
 }
 
 struct WaveletState {
@@ -79,8 +97,9 @@ struct WaveletState {
   // (step 0: zeros) and the boxes of bands not read are zeroed before synthesis.
   std::unique_ptr<int64_t[]> coefficients;
   std::vector<uint8_t> band_written;  // per band of the plan
-  std::vector<int64_t> band_values;   // scratch of the largest band decoded so far
+  std::vector<int64_t> band_values;   // scratch for bands not decoded in place
   std::vector<int64_t> band_symbols;  // scratch for predicted bands
+  std::vector<uint16_t> band_magnitudes;  // scratch for bands decoded in place
   std::vector<uint8_t> mask;          // 1 = no data; empty without a mask
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
@@ -105,12 +124,12 @@ Error checkMemory(uint64_t bytes, const DecodeOptions& options, const ChunkView&
 
 Error readMask(const ChunkView& chunk, const DecodeOptions& options, WaveletState* s) {
   ArrayBox box = gridBox(*s->grid);
-  if (Error e = checkMemory(box.count() * 17, options, chunk); !e.ok()) return e;
-  // Without prediction the coded symbols are the values: one array serves as both.
+  if (Error e = checkMemory(box.count() * 19, options, chunk); !e.ok()) return e;
   std::vector<int64_t> values(box.count());
+  std::vector<uint16_t> magnitudes(box.count());
   if (Error e = decodeArrayPayload(s->header.entropy_mode, chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
-                                   "GMSK", box, ArrayPrediction::kNone, nullptr, values.data(),
-                                   values.data());
+                                   "GMSK", box, ArrayPrediction::kNone, nullptr,
+                                   contiguous(values.data(), box), nullptr, magnitudes.data());
       !e.ok())
     return e;
   s->mask.resize(values.size());
@@ -165,37 +184,41 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
   ArrayPrediction prediction =
       (band_flags & kBandFlagPredicted) ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone;
-  // Scratch kept from band to band; array() writes every entry, so it is not
-  // cleared. Without prediction the coded symbols are the values: one array
-  // serves as both.
+  // The band's box in the padded array (the Mallat layout).
+  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
+  const ArrayDestination place{s->coefficients.get() + band.offset[0] + band.offset[1] * px +
+                                   band.offset[2] * pxy,
+                               px, pxy};
+  // A range-coded band without prediction (every detail band) is decoded in
+  // place and dequantised there. The others are decoded to scratch kept from
+  // band to band (array() writes every entry, so it is not cleared), then
+  // dequantised into place (spec 5.4).
+  const bool in_place =
+      s->header.entropy_mode != kEntropyBaseline && prediction == ArrayPrediction::kNone;
   try {
-    if (s->band_values.size() < box.count()) s->band_values.resize(box.count());
+    if (in_place && s->band_magnitudes.size() < box.count())
+      s->band_magnitudes.resize(box.count());
+    if (!in_place && s->band_values.size() < box.count()) s->band_values.resize(box.count());
     if (prediction == ArrayPrediction::kNeighbour && s->band_symbols.size() < box.count())
       s->band_symbols.resize(box.count());
   } catch (const std::bad_alloc&) {
     return checkMemory(UINT64_MAX, options, chunk);
   }
-  int64_t* values = s->band_values.data();
-  int64_t* symbols = prediction == ArrayPrediction::kNeighbour ? s->band_symbols.data() : values;
-  if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
-                                   "GBND", box, prediction, nullptr, values, symbols);
+  const ArrayDestination decoded =
+      in_place ? ArrayDestination{place.data, place.row_stride, place.slice_stride, step}
+               : contiguous(s->band_values.data(), box);
+  if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size,
+                                   chunk.payloadOffset() + kBandHeaderSize, "GBND", box, prediction,
+                                   nullptr, decoded, s->band_symbols.data(),
+                                   s->band_magnitudes.data());
       !e.ok())
     return e;
-  // Place the band in the Mallat layout, dequantised (spec 5.4): q * step, exact
-  // for |q| <= kValueLimit / step, else saturated.
-  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
-  const uint64_t limit = static_cast<uint64_t>(kValueLimit) / step;
-  const int64_t signed_step = static_cast<int64_t>(step);
-  const int64_t* src = values;
-  for (uint32_t z = 0; z < box.size[2]; ++z)
-    for (uint32_t y = 0; y < box.size[1]; ++y, src += box.size[0]) {
-      int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
-                                              (band.offset[2] + z) * pxy);
-      for (uint32_t x = 0; x < box.size[0]; ++x) {
-        const int64_t q = src[x];
-        row[x] = magnitudeOf(q) <= limit ? q * signed_step : dequantize(q, step);
-      }
-    }
+  if (!in_place)
+    for (uint32_t z = 0; z < box.size[2]; ++z)
+      for (uint32_t y = 0; y < box.size[1]; ++y)
+        dequantizeRow(decoded.data + y * decoded.row_stride + z * decoded.slice_stride,
+                      place.data + y * place.row_stride + z * place.slice_stride, box.size[0],
+                      step);
   s->band_written[index] = 1;
   return {};
 }
@@ -210,15 +233,15 @@ Error readResidual(const ChunkView& chunk, const DecodeOptions& options, Wavelet
     return Error{Status::kBadWaveletHeader, chunk.payloadOffset(), "GRES.residual_step",
                  "residual_step must be 1 to 2^20"};
   ArrayBox box = gridBox(*s->grid);
-  if (Error e = checkMemory(box.count() * 16, options, chunk); !e.ok()) return e;
+  if (Error e = checkMemory(box.count() * 18, options, chunk); !e.ok()) return e;
   s->residual.assign(box.count(), 0);
+  std::vector<uint16_t> magnitudes(box.count());
   s->residual_step = step;
-  // Without prediction the coded symbols are the values: one array serves as both.
   return decodeArrayPayload(s->header.entropy_mode, chunk.payload + kResidualHeaderSize,
                             chunk.chunk_length - kResidualHeaderSize,
                             chunk.payloadOffset() + kResidualHeaderSize, "GRES", box,
                             ArrayPrediction::kNone, s->mask.empty() ? nullptr : s->mask.data(),
-                            s->residual.data(), s->residual.data());
+                            contiguous(s->residual.data(), box), nullptr, magnitudes.data());
 }
 
 template <class T>
