@@ -42,6 +42,10 @@ struct WaveletEncodeOptions {
   // (often smaller, not progressive); kAuto keeps the smaller stream.
   enum class BoundRoute { kAuto, kResidual, kPredictive };
   BoundRoute bound_route = BoundRoute::kAuto;
+  // How the coarsest block is predicted (spec 5.7.4, 5.7.5): kAuto codes it both
+  // ways and keeps the smaller (weighted only with range coding).
+  enum class Prediction { kAuto, kNeighbour, kWeighted };
+  Prediction prediction = Prediction::kAuto;
   double keep_fraction = 0;   // (0, 1]: global oracle, keep the most important coefficients
   bool has_roi = false;       // local oracle: full detail where basis functions reach the region
   RegionOfInterest roi;

@@ -14,6 +14,7 @@
 #include "common/byte_reader.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
+#include "grid/weighted_array_coding.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/synthesis_fixed.h"
 
@@ -58,8 +59,11 @@ Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t si
   RangeDecoder rc(payload, size);
   if (!rc.validStart()) return fail("coded data must start with a 0 byte");
   DecodingCoder coder{&rc};
-  if (!codeArray(coder, values, symbols, box, prediction, skip))
-    return fail("a magnitude prefix is longer than 39 bits");
+  // Weighted arrays (spec 5.7.5) are only bands, which have no skipped positions.
+  const bool decoded = prediction == ArrayPrediction::kWeighted
+                           ? skip == nullptr && codeWeightedArray(coder, values, symbols, box)
+                           : codeArray(coder, values, symbols, box, prediction, skip);
+  if (!decoded) return fail("a magnitude prefix is longer than 39 bits");
   if (rc.overrun() != 0) return fail("coded data ends before the array does");
   if (rc.consumed() != size)
     return fail(std::to_string(size - rc.consumed()) + " bytes of coded data left over");
@@ -140,9 +144,14 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   if (band_index != index)
     return fail(0, "band_index", "band " + std::to_string(band_index) + " where band " +
                                      std::to_string(index) + " is next");
-  if (band_flags & ~kBandFlagPredicted)
+  if (band_flags & ~kBandPredictionMask)
     return Error{Status::kReservedNonZero, chunk.payloadOffset() + 2, "GBND.band_flags",
                  "reserved bits must be 0"};
+  const uint8_t prediction_code = band_flags & kBandPredictionMask;
+  if (prediction_code > kBandPredictionWeighted)
+    return fail(2, "band_flags", "prediction 3 is reserved");
+  if (prediction_code == kBandPredictionWeighted && s->header.entropy_mode == kEntropyBaseline)
+    return fail(2, "band_flags", "weighted prediction needs entropy_mode 1");
   if (reserved != 0)
     return Error{Status::kReservedNonZero, chunk.payloadOffset() + 3, "GBND.reserved", "must be 0"};
   if (step > static_cast<uint64_t>(kValueLimit))
@@ -163,20 +172,24 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   ArrayBox box;
   box.num_dims = s->plan.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-  ArrayPrediction prediction =
-      (band_flags & kBandFlagPredicted) ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone;
+  const ArrayPrediction prediction = static_cast<ArrayPrediction>(prediction_code);
+  // The weighted predictor keeps two rows of errors (spec 5.7.5) besides the arrays.
+  if (prediction == ArrayPrediction::kWeighted) {
+    const uint64_t state = uint64_t{box.size[0]} * WeightedPredictor::kBytesPerColumn;
+    if (Error e = checkMemory(s->plan.paddedCount() * 16 + state, options, chunk); !e.ok()) return e;
+  }
   // Scratch kept from band to band; array() writes every entry, so it is not
   // cleared. Without prediction the coded symbols are the values: one array
   // serves as both.
   try {
     if (s->band_values.size() < box.count()) s->band_values.resize(box.count());
-    if (prediction == ArrayPrediction::kNeighbour && s->band_symbols.size() < box.count())
+    if (prediction != ArrayPrediction::kNone && s->band_symbols.size() < box.count())
       s->band_symbols.resize(box.count());
   } catch (const std::bad_alloc&) {
     return checkMemory(UINT64_MAX, options, chunk);
   }
   int64_t* values = s->band_values.data();
-  int64_t* symbols = prediction == ArrayPrediction::kNeighbour ? s->band_symbols.data() : values;
+  int64_t* symbols = prediction != ArrayPrediction::kNone ? s->band_symbols.data() : values;
   if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
                                    "GBND", box, prediction, nullptr, values, symbols);
       !e.ok())
