@@ -85,16 +85,17 @@ class WeightedPredictor {
     // the slice) weigh it: w_i = max(1, floor(2^14 / (sum + 1))).
     const uint64_t* se_up = sub_error_[up_].data();
     const uint64_t* se_cur = sub_error_[1 - up_].data();
+    // The five neighbours' errors, or zeros where a neighbour does not exist.
+    const uint64_t* at_n = up ? se_up + size_t{x} * kSubPredictors : kNoErrors;
+    const uint64_t* at_w = has_w ? se_cur + size_t{x - 1} * kSubPredictors : kNoErrors;
+    const uint64_t* at_nw = has_w && up ? se_up + size_t{x - 1} * kSubPredictors : kNoErrors;
+    const uint64_t* at_ww = x > 1 ? se_cur + size_t{x - 2} * kSubPredictors : kNoErrors;
+    const uint64_t* at_ne = has_ne ? se_up + size_t{x + 1} * kSubPredictors : kNoErrors;
     int64_t weight_sum = 0, weighted = 0;
     for (int i = 0; i < kSubPredictors; ++i) {
       if (sub_[i] > kSubLimit) sub_[i] = kSubLimit;
       if (sub_[i] < -kSubLimit) sub_[i] = -kSubLimit;
-      uint64_t sum = 0;
-      if (up) sum += se_up[size_t{x} * kSubPredictors + i];
-      if (has_w) sum += se_cur[size_t{x - 1} * kSubPredictors + i];
-      if (has_w && up) sum += se_up[size_t{x - 1} * kSubPredictors + i];
-      if (x > 1) sum += se_cur[size_t{x - 2} * kSubPredictors + i];
-      if (has_ne) sum += se_up[size_t{x + 1} * kSubPredictors + i];
+      const uint64_t sum = at_n[i] + at_w[i] + at_nw[i] + at_ww[i] + at_ne[i];
       static_assert(WeightTable::kSize == uint64_t{1} << kWeightBits, "one weight per sum below 2^14");
       const uint64_t weight = sum < WeightTable::kSize ? kWeightTable.weight[sum] : 1;
       weight_sum += static_cast<int64_t>(weight);
@@ -128,6 +129,7 @@ class WeightedPredictor {
     return a >= 0 ? a / b : -((-a + b - 1) / b);
   }
 
+  static constexpr uint64_t kNoErrors[kSubPredictors] = {};
   uint32_t size_x_ = 0;
   int up_ = 0;  // which of the two rows holds the row above
   std::vector<int64_t> true_error_[2];   // blend - 8 * value, in eighths
