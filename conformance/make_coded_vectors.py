@@ -131,15 +131,28 @@ def build(g):
                 g.encode(helens, "int16", h2, ["--order", str(order), "--step", "7"]),
                 "4, 5", f"a terrain window, order {order}, lossy with step 7 (no residual)")
         g.valid(f"volume_order{order}_rate",
-                g.encode(head, "uint8", h3, ["--order", str(order), "--bits-per-sample", "1.5"]),
+                g.encode(head, "uint8", h3, ["--order", str(order), "--progressive", "--bits-per-sample", "1.5"]),
                 "4, 5", f"a CT block (3-D uint8), order {order}, about 1.5 bits per sample")
+    # The CDF 9/7 wavelet (4.11), the default: lossless, a step, a rate, odd sizes.
+    g.valid("terrain_cdf97_lossless",
+            g.encode(helens, "int16", h2, ["--wavelet", "cdf97", "--lossless", "--bound-route", "residual"]),
+            "4.11, 5", "a terrain window, CDF 9/7, lossless (bands + residual)",
+            expected=canonical("int16", h2, helens))
+    g.valid("terrain_cdf97_step", g.encode(helens, "int16", h2, ["--wavelet", "cdf97", "--step", "7"]),
+            "4.11, 5", "a terrain window, CDF 9/7, lossy with step 7 (no residual)")
+    g.valid("volume_cdf97_rate",
+            g.encode(head, "uint8", h3, ["--wavelet", "cdf97", "--progressive", "--bits-per-sample", "1.5"]),
+            "4.11, 5", "a CT block (3-D uint8), CDF 9/7, about 1.5 bits per sample")
+    g.valid("terrain_cdf97_odd_sizes",
+            g.encode(helens[:2 * 61 * 17], "int16", [61, 17], ["--wavelet", "cdf97", "--step", "3"]),
+            "4.11", "a 61 x 17 window, CDF 9/7: levels 3 and 1, odd lengths at most levels")
     # The baseline entropy mode (5.10).
     g.valid("terrain_baseline_lossless",
             g.encode(helens, "int16", h2, ["--entropy", "baseline", "--lossless", "--bound-route", "residual"]),
             "5.10", "a terrain window, baseline entropy mode, lossless (bands + residual)",
             expected=canonical("int16", h2, helens))
     g.valid("volume_baseline_rate",
-            g.encode(head, "uint8", h3, ["--entropy", "baseline", "--bits-per-sample", "1.5"]),
+            g.encode(head, "uint8", h3, ["--entropy", "baseline", "--progressive", "--bits-per-sample", "1.5"]),
             "5.10", "a CT block, baseline entropy mode, about 1.5 bits per sample")
     g.valid("terrain_baseline_nodata_predictive",
             g.encode(fuji, "int16", [53, 47], ["--entropy", "baseline", "--max-error", "2",
@@ -204,6 +217,10 @@ def build(g):
                 f"a stream prefix cut after band {bands.index(upto) + 1} of {len(bands)}")
     g.valid("prefix_before_mend", frame(chunks[:-1]), "2.5.1, 5.1", "all chunks but MEND: residual applied")
     g.valid("complete_max_error1", full, "5", "the stream the prefixes come from")
+    linear = parse_chunks(g.encode(helens, "int16", h2, ["--order", "2", "--max-error", "1", "--bound-route", "residual"]))
+    linear_bands = [i for i, (t, _) in enumerate(linear) if t == "GBND"]
+    g.valid("prefix_linear_half_bands", frame(linear[:linear_bands[len(linear_bands) // 2] + 1]), "2.5.1, 4.5, 5.1",
+            "a prefix of a linear B-spline stream, cut after half its bands")
 
     # --- invalid: wavelet header (5.2) -----------------------------------------
     w = find(chunks, "WHDR")
@@ -216,11 +233,11 @@ def build(g):
         c[w] = ("WHDR", bytes(p))
         g.invalid(name, c, error, error_name, wpos + err_at, "5.2", description)
 
-    whdr("whdr_order_5", 0, b"\x05", 204, "bad_wavelet_header", 0, "order 5")
+    whdr("whdr_order_6", 0, b"\x06", 204, "bad_wavelet_header", 0, "order 6 (1-4 B-splines, 5 CDF 9/7)")
     whdr("whdr_levels_17", 1, b"\x11", 204, "bad_wavelet_header", 1, "17 levels on x")
     whdr("whdr_levels_beyond_dims", 3, b"\x01", 204, "bad_wavelet_header", 3, "levels on z of a 2-D grid")
     whdr("whdr_no_plan", 1, b"\x09", 204, "bad_wavelet_header", 1,
-         "9 levels on a 61-sample axis: no plan with n_0 >= n_min")
+         "9 levels on a 61-sample axis of a 9/7 stream: level 9 would split 1 value")
     whdr("whdr_entropy_mode_2", 4, b"\x02", 202, "unsupported_coding", 4, "entropy_mode 2 (reserved)")
     whdr("whdr_frac_bits_25", 5, b"\x19", 204, "bad_wavelet_header", 5, "frac_bits 25")
     whdr("whdr_flags_reserved", 6, b"\x82", 105, "reserved_nonzero", 6, "a reserved bit of wavelet_flags")

@@ -38,7 +38,7 @@ inputs=(
 )
 
 echo
-echo "== 1. lossless wavelet coding (cubic B-spline wavelets + exact residual) =="
+echo "== 1. lossless coding (the smaller of: wavelet bands + exact residual, predicted samples) =="
 report=()
 for entry in "${inputs[@]}"; do
   IFS='|' read -r name file dims type extra <<<"$entry"
@@ -100,7 +100,7 @@ echo "== 4. info: the chunk table of a wavelet-coded file =="
 
 echo
 echo "== 5. progressive: every prefix of complete chunks decodes, coarse to fine =="
-"$mrsv" encode --quiet --dims 128,128 --type int16 --bits-per-sample 2 "$helens" "$out/prog.mrsv"
+"$mrsv" encode --quiet --dims 128,128 --type int16 --progressive --bits-per-sample 2 "$helens" "$out/prog.mrsv"
 "$mrsv" info --json "$out/prog.mrsv" >"$out/prog.json"
 python3 - "$out/prog.json" <<'PY' >"$out/cuts.txt"
 import json, sys

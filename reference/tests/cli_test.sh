@@ -62,6 +62,15 @@ expect 1 "$mrsv" decode --quiet --bytes 100 "$work/a.mrsv" "$work/p.raw"; stderr
 expect 0 "$mrsv" decode --quiet --canonical --bytes 100 "$work/a.mrsv" "$work/p.can"
 if head -1 "$work/p.can" | grep -q "mrsv-canonical-grid 1 int16 2 128 128 1 0"; then ok; else bad "prefix canonical output"; fi
 
+# A rate target: levels unless --progressive is dropped and the predictive
+# route is better (at 6 bits/sample the lossless stream of the crop fits).
+expect 0 "$mrsv" encode --dims 128,128 --type int16 --progressive --bits-per-sample 6 "$crop" "$work/r.mrsv"
+stderr_has "levels [1-9]"
+expect 0 "$mrsv" encode --dims 128,128 --type int16 --bits-per-sample 6 "$crop" "$work/r.mrsv"
+stderr_has "PSNR inf dB, max error 0, levels 0 (predictive route"
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --lossless --bound-route predictive --progressive "$crop" "$work/x.mrsv"
+stderr_has "not progressive"; one_line_stderr
+
 # Bad input: one line naming the file and the rule; no output left behind.
 expect 1 "$mrsv" decode --quiet "$vectors/invalid/truncated_payload.mrsv" "$work/t.raw"
 stderr_has "truncated_payload.mrsv: offset 52: E111"; one_line_stderr

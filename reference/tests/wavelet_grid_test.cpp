@@ -107,7 +107,7 @@ TEST(WaveletGrid, LosslessIsExactOnRealDataForEveryOrder) {
   std::vector<TestGrid> grids = realWindows();
   ASSERT_GE(grids.size(), 12u);
   for (const TestGrid& g : grids) {
-    for (int order = 1; order <= 4; ++order) {
+    for (int order : {1, 2, 3, 4, kWaveletOrderCdf97}) {
       WaveletEncodeOptions options;
       options.order = order;
       options.max_error = 0;
@@ -137,24 +137,51 @@ TEST(WaveletGrid, ErrorBoundHoldsForEverySample) {
 
 TEST(WaveletGrid, RateAndPsnrTargetsAreMet) {
   for (const TestGrid& g : realWindows()) {
+    const double n = static_cast<double>(g.header.sampleCount());
     for (double rate : {0.5, 2.0}) {
+      // Progressive (wavelet levels only): the rate is met within 5 %.
       WaveletEncodeOptions options;
       options.bits_per_sample = rate;
+      options.progressive = true;
       std::vector<uint8_t> stream;
-      WaveletEncodeReport report;
-      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &report).ok())
+      WaveletEncodeReport progressive;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &progressive).ok())
           << g.name;
-      double achieved = 8.0 * static_cast<double>(stream.size()) / static_cast<double>(g.header.sampleCount());
+      double achieved = 8.0 * static_cast<double>(stream.size()) / n;
       EXPECT_LE(achieved, rate) << g.name;
       EXPECT_GE(achieved, 0.95 * rate) << g.name << " (rate met within 5 %)";
+      EXPECT_GT(progressive.levels, 0) << g.name;
+      // The default also tries the predictive route (spec 5.9 item 6): it never
+      // does worse, and a stream well under the rate must be a better one.
+      options.progressive = false;
+      WaveletEncodeReport chosen;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &chosen).ok())
+          << g.name;
+      achieved = 8.0 * static_cast<double>(stream.size()) / n;
+      EXPECT_LE(achieved, rate) << g.name;
+      EXPECT_GE(chosen.psnr, progressive.psnr) << g.name << " rate " << rate;
+      if (achieved < 0.95 * rate) {  // better, or as exact and smaller
+        EXPECT_EQ(chosen.levels, 0) << g.name << " rate " << rate;
+        EXPECT_TRUE(chosen.psnr > progressive.psnr ||
+                    (std::isinf(chosen.psnr) && chosen.bytes < progressive.bytes))
+            << g.name << " rate " << rate;
+      }
     }
     WaveletEncodeOptions options;
     options.psnr = 45;
-    std::vector<uint8_t> stream;
+    options.progressive = true;
+    std::vector<uint8_t> progressive, chosen;
     WaveletEncodeReport report;
-    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, &report).ok());
+    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &progressive, &report).ok());
     EXPECT_GE(report.psnr, 45) << g.name;
     EXPECT_LT(report.psnr, 46.5) << g.name << ": the target is met without waste";
+    options.progressive = false;
+    ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &chosen, &report).ok());
+    EXPECT_GE(report.psnr, 45) << g.name;
+    EXPECT_LE(chosen.size(), progressive.size()) << g.name;
+    if (report.levels == 0) {
+      EXPECT_LT(chosen.size(), progressive.size()) << g.name;
+    }
   }
 }
 
@@ -164,6 +191,7 @@ TEST(WaveletGrid, DeterministicAndPrefixesRefine) {
                                        "/terrain/mt_st_helens_317x460_int16le.raw.zst", &g));
   WaveletEncodeOptions options;
   options.bits_per_sample = 2;
+  options.progressive = true;
   std::vector<uint8_t> a, b;
   ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &a, nullptr).ok());
   ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &b, nullptr).ok());
@@ -189,8 +217,8 @@ TEST(WaveletGrid, DeterministicAndPrefixesRefine) {
   }
   EXPECT_LT(previous, first_sse / 50);
   DecodedGrid half = decode(a, 1);
-  const uint32_t d = static_cast<uint32_t>(options.order - 1);  // ceil((N - d) / 2) + d
-  EXPECT_EQ(half.output_size[0], (317u - d + 1) / 2 + d);
+  EXPECT_EQ(options.order, kWaveletOrderCdf97);
+  EXPECT_EQ(half.output_size[0], (317u + 1) / 2);  // ceil(N / 2) (spec 4.11.1)
   EXPECT_EQ(half.samples.size(), size_t{half.output_size[0]} * half.output_size[1] * 2);
 }
 

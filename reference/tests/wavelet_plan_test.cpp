@@ -46,7 +46,7 @@ TEST(WaveletPlan, ImpossiblePlansAreRefused) {
   EXPECT_FALSE(makeAxisPlan(3, 4, 1, &p));               // N < k
   EXPECT_FALSE(makeAxisPlan(0, 1, 0, &p));               // no samples
   EXPECT_FALSE(makeAxisPlan(100, 0, 0, &p));             // order
-  EXPECT_FALSE(makeAxisPlan(100, 5, 1, &p));             // order
+  EXPECT_FALSE(makeAxisPlan(100, 6, 1, &p));             // order (5 is CDF 9/7)
   EXPECT_FALSE(makeAxisPlan(100, 2, -1, &p));            // levels
   EXPECT_FALSE(makeAxisPlan(1u << 24, 1, kMaxLevels + 1, &p));
   EXPECT_TRUE(makeAxisPlan(1u << 24, 1, kMaxLevels, &p));
@@ -107,7 +107,7 @@ TEST(WaveletPlan, StructuralValidity) {
   bad.axis[0].coarse_intervals = 10;  // below n_min(4) = 11
   EXPECT_FALSE(isValidGridPlan(bad));
   bad = plan;
-  bad.axis[1].order = 5;
+  bad.axis[1].order = 6;  // neither a B-spline order nor 9/7 (5)
   EXPECT_FALSE(isValidGridPlan(bad));
   bad = plan;
   bad.axis[0].levels = kMaxLevels + 1;

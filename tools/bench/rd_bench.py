@@ -516,7 +516,7 @@ def speed(args, datasets_all, root, results):
 
     # 3-D: MRSV at 1 bit/sample, zfp fixed-rate 1 bit/sample, same volume
     m3 = sd / "v.mrsv"
-    mrsv_encode(args, vol, ["--bits-per-sample", "1"], m3)
+    mrsv_encode(args, vol, ["--progressive", "--bits-per-sample", "1"], m3)
     best([args.mrsv, "decode", "--quiet", m3, sd / "v.raw"], vol, "3-D decode", "mrsv")
     z3 = sd / "v.zfp"  # as in part 1: int32, fixed rate
     run(["zfp", "-q", "-t", "i32"] + zfp_dims(vol) + ["-r", "1", "-i", vol.i32, "-z", z3])
@@ -531,7 +531,7 @@ def speed(args, datasets_all, root, results):
     run(["opj_compress", "-i", ter.filled_raw, "-o", j2, "-F", opj_F(ter), "-I", "-r", "16"])
     best(["opj_decompress", "-quiet", "-threads", "1", "-i", j2, "-o", sd / "t.rawl"], ter, "2-D decode", "opj_decompress")
     m2 = sd / "t.mrsv"
-    mrsv_encode(args, ter, ["--bits-per-sample", "1"], m2)
+    mrsv_encode(args, ter, ["--progressive", "--bits-per-sample", "1"], m2)
     best([args.mrsv, "decode", "--quiet", m2, sd / "t.raw"], ter, "2-D decode", "mrsv")
     for r in rows:
         r["bps"] = bps({"mrsv": m3 if r["what"].startswith("3") else m2, "zfp": z3, "zfp-f32": z3f,

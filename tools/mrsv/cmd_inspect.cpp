@@ -110,7 +110,9 @@ std::string summary(const DecodedGrid& grid) {
     s += ", stored";
   } else {
     const WaveletHeader& w = grid.wavelet;
-    s += ", wavelet order " + std::to_string(w.order) + ", levels " + std::to_string(w.levels[0]);
+    s += (w.order == kWaveletOrderCdf97 ? std::string(", wavelet CDF 9/7")
+                                        : ", wavelet order " + std::to_string(w.order)) +
+         ", levels " + std::to_string(w.levels[0]);
     for (int a = 1; a < h.num_dims; ++a) s += "/" + std::to_string(w.levels[a]);
     s += ", " + std::to_string(grid.bands_decoded) + "/" + std::to_string(grid.bands_total) + " bands";
     if (w.hasResidual()) s += grid.residual_decoded ? ", residual" : ", residual missing";

@@ -30,7 +30,9 @@ struct RegionOfInterest {
 // quality is set by exactly one of: step, bits_per_sample, psnr, max_error
 // (max_error 0 is lossless), keep_fraction.
 struct WaveletEncodeOptions {
-  int order = 2;              // 1 Haar, 2 linear (best measured, spec 5.9), 3 quadratic, 4 cubic
+  // kWaveletOrderCdf97 (spec 4.11; best measured, 5.9), or a B-spline order: 1 Haar,
+  // 2 linear (the best B-spline), 3 quadratic, 4 cubic.
+  int order = kWaveletOrderCdf97;
   uint8_t entropy_mode = kEntropyAdaptive;  // or kEntropyBaseline (the paper's JPEG-like coder)
   int max_levels = 16;        // per axis; fewer when the axis is short (padding <= 1/32)
   double step = 0;            // base quantiser step in sample units
@@ -46,6 +48,11 @@ struct WaveletEncodeOptions {
   // ways and keeps the smaller (weighted only with range coding).
   enum class Prediction { kAuto, kNeighbour, kWeighted };
   Prediction prediction = Prediction::kAuto;
+  // Only streams with decomposition levels (every prefix a coarser
+  // approximation): the predictive route is not considered, neither for an
+  // error bound (as kResidual) nor, for integer samples, beside the wavelets
+  // under a rate or PSNR target (spec 5.9 item 6).
+  bool progressive = false;
   double keep_fraction = 0;   // (0, 1]: global oracle, keep the most important coefficients
   bool has_roi = false;       // local oracle: full detail where basis functions reach the region
   RegionOfInterest roi;
@@ -60,6 +67,7 @@ struct WaveletEncodeReport {
   double base_step = 0;       // in normalised units
   uint32_t residual_step = 0; // 0 without a residual layer
   int iterations = 0;         // encodes tried by the rate control
+  int levels = 0;             // decomposition levels of the stream (0: the predictive route)
   // The L2 error of the quantised wavelet expansion in function space (finest
   // B-splines, unit knot spacing), exactly through the Gram matrices, and the
   // orthogonal estimate sqrt(sum (e_i ||psi_i||)^2) an orthogonal basis would give.

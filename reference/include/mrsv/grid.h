@@ -62,6 +62,10 @@ constexpr uint8_t kWaveletFlagHasMask = 0x01;
 constexpr uint8_t kWaveletFlagHasResidual = 0x02;
 constexpr uint8_t kEntropyBaseline = 0;  // spec 5.10: run/size symbols, Huffman table in the stream
 constexpr uint8_t kEntropyAdaptive = 1;  // spec 5.6, 5.7: context-modelled range coding
+// WaveletHeader::order (and WaveletEncodeOptions::order) of the CDF 9/7 wavelet
+// (spec 4.11), beside the B-spline orders 1 to 4.
+constexpr int kWaveletOrderCdf97 = 5;
+
 struct WaveletHeader {
   uint8_t order = 4;
   uint8_t levels[3] = {0, 0, 0};

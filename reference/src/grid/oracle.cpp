@@ -23,7 +23,23 @@ AxisSupports::AxisSupports(const wavelet::AxisPlan& axis) {
   }
   // A coarse function is a combination of contiguous fine functions (one
   // column of P or Q): its support spans theirs.
-  for (int l = 1; l <= levels; ++l) {
+  for (int l = 1; l <= levels && wavelet::isCdf97(axis.order); ++l) {
+    // spec 4.11: low-pass value i reaches fine positions 2i-3..2i+3 and
+    // high-pass value i positions 2i-3..2i+5 (mirroring at the ends stays
+    // inside these ranges once they are cut to the line).
+    const auto& flo = scaling_lo_[static_cast<size_t>(l - 1)];
+    const auto& fhi = scaling_hi_[static_cast<size_t>(l - 1)];
+    const int64_t last = int64_t{axis.size(l - 1)} - 1;
+    auto span = [&](int64_t a, int64_t b, std::vector<uint32_t>* lo, std::vector<uint32_t>* hi) {
+      lo->push_back(flo[static_cast<size_t>(std::clamp<int64_t>(a, 0, last))]);
+      hi->push_back(fhi[static_cast<size_t>(std::clamp<int64_t>(b, 0, last))]);
+    };
+    for (int64_t i = 0; i < int64_t{axis.size(l)}; ++i)
+      span(2 * i - 3, 2 * i + 3, &scaling_lo_[static_cast<size_t>(l)], &scaling_hi_[static_cast<size_t>(l)]);
+    for (int64_t i = 0; i < int64_t{axis.size(l - 1) - axis.size(l)}; ++i)
+      span(2 * i - 3, 2 * i + 5, &wavelet_lo_[static_cast<size_t>(l)], &wavelet_hi_[static_cast<size_t>(l)]);
+  }
+  for (int l = 1; l <= levels && !wavelet::isCdf97(axis.order); ++l) {
     const wavelet::LevelFilters f(axis.order, axis.intervals(l));
     const auto& flo = scaling_lo_[static_cast<size_t>(l - 1)];
     const auto& fhi = scaling_hi_[static_cast<size_t>(l - 1)];
@@ -143,6 +159,14 @@ void applyAlongAxis(const AxisGram& g, const uint32_t box[3], int a, const std::
 double functionSpaceNormSquared(const wavelet::GridPlan& plan,
                                 const std::vector<wavelet::Band>& bands,
                                 const std::vector<double>& e) {
+  if (wavelet::isCdf97(plan.axis[0].order)) {
+    // No B-spline function space: the exact norm of the samples e synthesises to.
+    std::vector<double> samples = e;
+    wavelet::synthesize(plan, samples.data());
+    double sum = 0;
+    for (double v : samples) sum += v * v;
+    return sum;
+  }
   const uint64_t px = plan.axis[0].size(0), pxy = px * plan.axis[1].size(0);
   double total = 0;
   std::vector<double> x, y;

@@ -34,6 +34,8 @@ double regionWeight(const RegionOfInterest& roi, int num_dims, const uint32_t lo
 // with unit knot spacing, of the function whose coefficients (in the Mallat
 // layout of `plan`) are `e`: the sum over bands of e_b^T (G_x (x) G_y (x) G_z) e_b,
 // bands being mutually orthogonal in the semi-orthogonal basis. Linear time.
+// For the CDF 9/7 wavelet (spec 4.11), the squared norm of the samples e
+// synthesises to.
 double functionSpaceNormSquared(const wavelet::GridPlan& plan,
                                 const std::vector<wavelet::Band>& bands,
                                 const std::vector<double>& e);

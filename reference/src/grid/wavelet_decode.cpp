@@ -353,6 +353,8 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
     axis_stop[a] = stop < ax.levels ? stop : ax.levels;
     if (axis_stop[a] == 0) {
       size[a] = ax.samples;
+    } else if (wavelet::isCdf97(ax.order)) {
+      size[a] = ax.size(axis_stop[a]);  // no padding (4.11.1)
     } else {
       uint32_t d = static_cast<uint32_t>(ax.order - 1);
       uint32_t step = 1u << axis_stop[a];

@@ -33,8 +33,8 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
   h.value_offset = r.u64();
   h.value_scale = r.u64();
 
-  if (h.order < wavelet::kMinOrder || h.order > wavelet::kMaxOrder)
-    return fail(Status::kBadWaveletHeader, 0, "order", "order must be 1 to 4");
+  if (!wavelet::isValidOrder(h.order))
+    return fail(Status::kBadWaveletHeader, 0, "order", "order must be 1 to 4, or 5 (CDF 9/7)");
   for (int a = 0; a < 3; ++a) {
     if (a >= grid.num_dims && h.levels[a] != 0)
       return fail(Status::kBadWaveletHeader, 1 + a, "levels", "levels must be 0 beyond num_dims");

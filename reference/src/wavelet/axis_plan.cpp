@@ -13,6 +13,7 @@ int minCoarseIntervals(int order) {
 uint32_t AxisPlan::size(int level) const {
   if (levels <= 0) return samples;
   int j = level < 0 ? 0 : level > levels ? levels : level;
+  if (isCdf97(order)) return ((samples - 1) >> j) + 1;  // spec 4.11: ceil(N / 2^j), no padding
   // makeAxisPlan checked that size(0) fits, and the sizes decrease with j.
   return (coarse_intervals << (levels - j)) + static_cast<uint32_t>(order - 1);
 }
@@ -25,13 +26,16 @@ uint32_t AxisPlan::intervals(int level) const {
 
 // spec: 4.3
 bool makeAxisPlan(uint32_t samples, int order, int levels, AxisPlan* out) {
-  if (order < kMinOrder || order > kMaxOrder || samples == 0) return false;
+  if (!isValidOrder(order) || samples == 0) return false;
   if (levels < 0 || levels > kMaxLevels) return false;
   AxisPlan plan;
   plan.samples = samples;
   plan.order = order;
   plan.levels = levels;
-  if (levels > 0) {
+  if (isCdf97(order)) {
+    // spec: 4.11 every split level has at least 2 values: ceil(N / 2^(L-1)) >= 2.
+    if (levels > 0 && ((samples - 1) >> (levels - 1)) + 1 < 2) return false;
+  } else if (levels > 0) {
     const uint32_t d = static_cast<uint32_t>(order - 1);
     if (samples < static_cast<uint32_t>(order)) return false;
     // n_0 = ceil((N - d) / 2^L); 64-bit so that the padded length cannot wrap.
@@ -48,6 +52,13 @@ bool makeAxisPlan(uint32_t samples, int order, int levels, AxisPlan* out) {
 // spec: 4.10 (informative)
 int chooseLevels(uint32_t samples, int order, int max_levels) {
   if (max_levels > kMaxLevels) max_levels = kMaxLevels;
+  if (isCdf97(order)) {
+    // The most levels that leave at least 8 values on the coarsest level: more
+    // levels gain nothing measurable on the test data, fewer lose a little.
+    int levels = 0;
+    while (levels < max_levels && ((samples - 1) >> (levels + 1)) + 1 >= 8) ++levels;
+    return levels;
+  }
   for (int levels = max_levels; levels > 0; --levels) {
     AxisPlan plan;
     if (!makeAxisPlan(samples, order, levels, &plan)) continue;
@@ -86,9 +97,13 @@ bool makeGridPlan(int num_dims, const uint32_t samples[3], int order, const int 
 bool isValidGridPlan(const GridPlan& plan) {
   if (plan.num_dims < 1 || plan.num_dims > 3) return false;
   for (const AxisPlan& a : plan.axis) {
-    if (a.order < kMinOrder || a.order > kMaxOrder || a.samples == 0) return false;
+    if (!isValidOrder(a.order) || a.samples == 0) return false;
     if (a.levels < 0 || a.levels > kMaxLevels) return false;
     if (a.levels == 0) continue;
+    if (isCdf97(a.order)) {
+      if (((a.samples - 1) >> (a.levels - 1)) + 1 < 2) return false;
+      continue;
+    }
     if (a.coarse_intervals < static_cast<uint32_t>(minCoarseIntervals(a.order))) return false;
     if ((uint64_t{a.coarse_intervals} << a.levels) + (a.order - 1) > UINT32_MAX) return false;
   }

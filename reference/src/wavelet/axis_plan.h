@@ -11,6 +11,14 @@ namespace mrsv::wavelet {
 
 constexpr int kMinOrder = 1, kMaxOrder = 4;  // spec: 4.2 (Haar, linear, quadratic, cubic)
 constexpr int kMaxLevels = 16;               // spec: 4.3
+// spec: 4.11 the CDF 9/7 biorthogonal wavelet (JPEG 2000's irreversible one),
+// selected by WHDR.order = 5: not a B-spline order, but it travels in the same
+// field so that every plan, band list and layout rule stays one code path.
+constexpr int kOrderCdf97 = 5;
+inline bool isCdf97(int order) { return order == kOrderCdf97; }
+inline bool isValidOrder(int order) {
+  return (order >= kMinOrder && order <= kMaxOrder) || isCdf97(order);
+}
 
 // n_min(k): the fewest intervals a level may have (spec 4.3, table in 4.2).
 // 0 for an order outside kMinOrder..kMaxOrder.

@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "wavelet/cdf97.h"
 #include "wavelet/level_filters.h"
 
 namespace mrsv::wavelet {
@@ -657,6 +658,7 @@ void synthesizeLevel(const GridPlan& plan, int level, int64_t* data, Scratch* sc
 // spec: 4.5
 void synthesizeFixed(const GridPlan& plan, int64_t* data, int stop_level) {
   if (!isValidGridPlan(plan)) return;
+  if (isCdf97(plan.axis[0].order)) return synthesizeFixedCdf97(plan, data, stop_level);
   if (stop_level < 0) stop_level = 0;
   Scratch scratch;
   for (int level = plan.maxLevels(); level > stop_level; --level)

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <memory>
 
+#include "wavelet/cdf97.h"
 #include "wavelet/level_filters.h"
 #include "wavelet/line_batches.h"
 
@@ -307,6 +308,7 @@ void paddedSizes(const GridPlan& plan, uint32_t padded[3]) {
 // synthesis; the axes commute, so any order gives the same result up to rounding).
 void analyze(const GridPlan& plan, double* data) {
   if (!isValidGridPlan(plan)) return;
+  if (isCdf97(plan.axis[0].order)) return analyzeCdf97(plan, data);
   uint32_t padded[3];
   paddedSizes(plan, padded);
   std::vector<double> in, out, scratch;
@@ -327,6 +329,7 @@ void analyze(const GridPlan& plan, double* data) {
 
 void synthesize(const GridPlan& plan, double* data, int stop_level) {
   if (!isValidGridPlan(plan)) return;
+  if (isCdf97(plan.axis[0].order)) return synthesizeCdf97(plan, data, stop_level);
   if (stop_level < 0) stop_level = 0;
   uint32_t padded[3];
   paddedSizes(plan, padded);
@@ -352,6 +355,22 @@ std::vector<double> axisBasisNorms(const AxisPlan& axis) {
   GridPlan check;
   check.axis[0] = axis;
   if (axis.levels <= 0 || !isValidGridPlan(check)) return norms;
+  if (isCdf97(axis.order)) {
+    // No function space here: the norm of the samples one coefficient
+    // synthesises to, the same for every coefficient of a band (taken from one
+    // in its middle; the few at the ends differ a little).
+    auto bandNorm = [&](uint32_t first, uint32_t end) {
+      std::vector<double> line(axis.size(0), 0.0);
+      line[(first + end) / 2] = 1.0;
+      synthesizeCdf97(check, line.data(), 0);
+      double e = 0;
+      for (double v : line) e += v * v;
+      std::fill(norms.begin() + first, norms.begin() + end, std::sqrt(e));
+    };
+    bandNorm(0, axis.size(axis.levels));
+    for (int level = axis.levels; level >= 1; --level) bandNorm(axis.size(level), axis.size(level - 1));
+    return norms;
+  }
   const int top = axis.levels;
   // Scaling functions of the coarsest level: knot spacing 2^L.
   const double coarse_scale = std::ldexp(1.0, top);

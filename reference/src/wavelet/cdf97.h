@@ -1,0 +1,35 @@
+// The CDF 9/7 biorthogonal wavelet by lifting (WHDR.order 5). spec: 4.11.
+//
+// The semi-orthogonal B-spline wavelets of the paper have a lower coding gain
+// on smooth data than 9/7 (spec 5.9 item 5, tools/bench/transform_gain.py); this
+// is the transform the codec offers beside them for rate-distortion. The grid
+// plan, the Mallat layout and the bands are those of 4.3 and 4.4 with the sizes
+// of 4.11; only the synthesis of one level differs.
+#pragma once
+
+#include <cstdint>
+
+#include "wavelet/axis_plan.h"
+
+namespace mrsv::wavelet {
+
+// spec: 4.11.2 the lifting coefficients in fixed point, round(c * 2^24), and
+// the real numbers they stand for (Daubechies and Sweldens' factorisation).
+constexpr int kCdf97FracBits = 24;
+constexpr int64_t kCdf97Alpha = -26610918;  // -1.586134342059924
+constexpr int64_t kCdf97Beta = -888859;     // -0.052980118572961
+constexpr int64_t kCdf97Gamma = 14812790;   //  0.882911075530934
+constexpr int64_t kCdf97Delta = 7440810;    //  0.443506852043971
+constexpr int64_t kCdf97K = 20638897;       //  1.230174104914001
+
+// spec: 4.11.3. Fixed-point synthesis of every level above `stop_level`, the
+// 9/7 counterpart of synthesizeFixed (which calls it for such plans); the
+// same contract on `data`, saturation to +-kValueLimit included.
+void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level);
+
+// Real-valued analysis and synthesis (informative, the encoder's): the exact
+// inverse pair of which 4.11.3 is the rounded synthesis.
+void analyzeCdf97(const GridPlan& plan, double* data);
+void synthesizeCdf97(const GridPlan& plan, double* data, int stop_level);
+
+}  // namespace mrsv::wavelet
