@@ -201,10 +201,6 @@ class GridEncoder {
   Error measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error) const;
   uint64_t validCount() const { return valid_count_; }
   double range() const { return c_max_ - c_min_; }
-  // The prediction the last encode chose for the coarsest block, and a way to
-  // keep it for the next encodes (each choice codes the block twice).
-  WaveletEncodeOptions::Prediction chosenPrediction() const { return chosen_prediction_; }
-  void keepPrediction(WaveletEncodeOptions::Prediction p) { prediction_ = p; }
   bool integerSamples() const { return !isFloatType(header_.sample_type); }
   double unitsPerSample() const { return 1.0 / scale_; }
   double keepThreshold() const { return keep_threshold_; }
@@ -230,7 +226,6 @@ class GridEncoder {
   double scale_ = 1;                  // sample units per x unit
   std::vector<uint8_t> mask_chunk_;
   WaveletEncodeOptions::Prediction prediction_ = WaveletEncodeOptions::Prediction::kAuto;
-  WaveletEncodeOptions::Prediction chosen_prediction_ = WaveletEncodeOptions::Prediction::kAuto;
   // Oracles.
   double keep_threshold_ = 0;   // importance below which a detail coefficient is dropped
   bool has_roi_ = false;
@@ -504,8 +499,6 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
     }
   }
   payload[2] = best_flags;
-  chosen_prediction_ = best_flags == kBandPredictionWeighted ? WaveletEncodeOptions::Prediction::kWeighted
-                                                            : WaveletEncodeOptions::Prediction::kNeighbour;
   payload.insert(payload.end(), best.begin(), best.end());
   return payload;
 }
@@ -705,8 +698,6 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
         uint32_t with_residual = k == 0 ? 0 : residual_step;
         if (Error e = predictive_enc.encode(delta, with_residual, metadata, &stream); !e.ok()) return e;
         ++rep.iterations;
-        // The samples at step 2d+1 choose the prediction; coarser steps keep it.
-        if (k == 0) predictive_enc.keepPrediction(predictive_enc.chosenPrediction());
         if (best.empty() || stream.size() < best.size()) {
           best.swap(stream);
           best_delta = delta;
