@@ -172,11 +172,31 @@ def build(g):
     g.valid("volume_uint16_lossless", g.encode(headsq, "uint16", [16, 16, 8], ["--lossless"]),
             "5", "12-bit CT block (uint16), lossless",
             expected=canonical("uint16", [16, 16, 8], headsq))
+    # Weighted prediction (5.7.5) in 1, 2 and 3 dimensions, and on a coarsest block.
+    g.valid("terrain_weighted_lossless",
+            g.encode(helens, "int16", h2, ["--lossless", "--bound-route", "predictive", "--prediction", "weighted"]),
+            "5.7.5", "a terrain window, lossless, samples coded with weighted prediction",
+            expected=canonical("int16", h2, helens))
+    g.valid("terrain_nodata_weighted_max_error1",
+            g.encode(fuji, "int16", [53, 47], ["--max-error", "1", "--bound-route", "predictive",
+                                                 "--prediction", "weighted"], nodata=-32768),
+            "5.7.5, 5.8.2", "SRTM window with voids: step 3, weighted prediction, voids at their prediction")
+    g.valid("volume_weighted_lossless",
+            g.encode(headsq, "uint16", [16, 16, 8], ["--lossless", "--bound-route", "predictive",
+                                                      "--prediction", "weighted"]),
+            "5.7.5", "12-bit CT block, lossless, each slice with weighted prediction",
+            expected=canonical("uint16", [16, 16, 8], headsq))
+    g.valid("terrain_weighted_step",
+            g.encode(helens, "int16", h2, ["--order", "2", "--step", "3", "--prediction", "weighted"]),
+            "5.7.5", "a terrain window, step 3, coarsest block with weighted prediction")
     # Sample types: 1-D int32, 2-D float32 and 3-D float64 (lossy: floats have no residual).
     line = [int(50000 * ((i / 40.0) ** 2) - 20000 + (i * 7919) % 300) for i in range(200)]
     ints = struct.pack("<200i", *line)
     g.valid("line_int32_lossless", g.encode(ints, "int32", [200], ["--lossless"]), "5",
             "a 1-D int32 line, lossless", expected=canonical("int32", [200], ints))
+    g.valid("line_int32_weighted_lossless",
+            g.encode(ints, "int32", [200], ["--lossless", "--bound-route", "predictive", "--prediction", "weighted"]),
+            "5.7.5", "a 1-D int32 line, lossless, weighted prediction", expected=canonical("int32", [200], ints))
     g.valid("line_int32_step", g.encode(ints, "int32", [200], ["--order", "2", "--step", "100"]), "5",
             "a 1-D int32 line, linear wavelets, step 100")
     vals = struct.unpack("<%dh" % (len(helens) // 2), helens)
@@ -249,6 +269,8 @@ def build(g):
          "bad_band_header", 4, "step 0 but coded data follows")
     band("band_flags_reserved", b0, lambda p: p.__setitem__(2, p[2] | 0x80), 105, "reserved_nonzero", 2,
          "a reserved bit of band_flags")
+    band("band_prediction_3", b0, lambda p: p.__setitem__(2, 3), 205, "bad_band_header", 2,
+         "prediction 3 (reserved)")
     band("band_reserved", b0, lambda p: p.__setitem__(3, 1), 105, "reserved_nonzero", 3, "reserved byte 1")
     band("entropy_first_byte", b0, lambda p: p.__setitem__(12, 1), 206, "bad_entropy_payload", 12,
          "coded data that does not start with 0", clause="5.6")
@@ -260,6 +282,14 @@ def build(g):
     c[b0] = ("GBND", chunks[b0][1][:11])
     g.invalid("band_short_payload", c, 117, "bad_chunk_length", offset_of(c, b0) + 4, "5.3",
               "GBND payload of 11 bytes")
+
+    base = parse_chunks(g.encode(helens, "int16", h2, ["--entropy", "baseline", "--lossless",
+                                                        "--bound-route", "predictive"]))
+    bb = find(base, "GBND")
+    c = list(base)
+    c[bb] = ("GBND", base[bb][1][:2] + b"\x02" + base[bb][1][3:])
+    g.invalid("band_weighted_in_baseline", c, 205, "bad_band_header", offset_of(c, bb) + 10, "5.3",
+              "prediction 2 (weighted) in the baseline entropy mode")
 
     # --- invalid: chunk order (5.1) ------------------------------------------
     r = find(chunks, "GRES")

@@ -842,6 +842,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help=f"only {' and '.join(QUICK)} (the speed part still runs)")
     ap.add_argument("--no-speed", action="store_true", help="skip the decoding-speed part")
     ap.add_argument("--speed-only", action="store_true", help="only the decoding-speed part (part 4)")
+    ap.add_argument("--lossless-only", action="store_true", help="only the lossless part (part 2)")
     ap.add_argument("--speed-volume", default="ct_bonsai", help="256^3 volume for the speed part (ct_bonsai)")
     ap.add_argument("--speed-terrain", default="mt_rainier", help="2-D terrain for the speed part (mt_rainier)")
     ap.add_argument("--speed-reps", type=int, default=3)
@@ -909,24 +910,27 @@ def main():
                 tasks.append((cost * ds.n, ds, label, fn))
             if args.speed_only:
                 continue
-            for R in RATES:
+            rd = not args.lossless_only
+            for R in RATES if rd else []:
                 add(0.6, f"mrsv rd {R:g}", lambda wd, ds=ds, R=R: ("rd", task_mrsv_rd(args, ds, R, wd)))
-            if have("zfp"):
+            if rd and have("zfp"):
                 add(0.15, "zfp-rate", lambda wd, ds=ds: ("rd", task_zfp_rate(args, ds, wd)))
                 add(0.5, "zfp-acc", lambda wd, ds=ds: ("rd", task_zfp_acc(args, ds, wd)))
             if ds.kind == "terrain" and ds.bits == 16:
                 if have("opj_compress", "opj_decompress"):
-                    add(0.4, "opj rd", lambda wd, ds=ds: ("rd", task_opj_rd(args, ds, wd)))
+                    if rd:
+                        add(0.4, "opj rd", lambda wd, ds=ds: ("rd", task_opj_rd(args, ds, wd)))
                     add(0.2, "opj lossless", lambda wd, ds=ds: ("lossless", [task_lossless(args, ds, wd, "opj-5/3")]))
                 if have("cjxl", "djxl"):
-                    add(12, "jxl rd", lambda wd, ds=ds: ("rd", task_jxl_rd(args, ds, wd, False)))
-                    add(12, "jxl-scaled rd", lambda wd, ds=ds: ("rd", task_jxl_rd(args, ds, wd, True)))
+                    if rd:
+                        add(12, "jxl rd", lambda wd, ds=ds: ("rd", task_jxl_rd(args, ds, wd, False)))
+                        add(12, "jxl-scaled rd", lambda wd, ds=ds: ("rd", task_jxl_rd(args, ds, wd, True)))
                     add(17, "jxl lossless", lambda wd, ds=ds: ("lossless", [task_lossless(args, ds, wd, "jxl")]))
             add(1.5, "mrsv lossless", lambda wd, ds=ds: ("lossless", [task_lossless(args, ds, wd, "mrsv")]))
             if have("xz"):
                 add(0.8, "xz", lambda wd, ds=ds: ("lossless", [task_lossless(args, ds, wd, "xz")]))
             add(0.4, "zstd", lambda wd, ds=ds: ("lossless", [task_lossless(args, ds, wd, "zstd")]))
-            for d in MAX_ERRORS:
+            for d in MAX_ERRORS if rd else []:
                 add(1.2, f"mrsv max-error {d}", lambda wd, ds=ds, d=d: ("maxerr", [task_maxerr(args, ds, wd, d)]))
         tasks.sort(key=lambda t: -t[0])
         log(f"parts 1-3: {len(tasks)} tasks on {args.jobs} jobs")

@@ -50,6 +50,9 @@ const char kHelp[] =
     "                        and a residual layer: every prefix is an approximation),\n"
     "                        predictive (no decomposition, neighbour prediction: often\n"
     "                        smaller, not progressive) or auto (the smaller; default)\n"
+    "  --prediction P        how the coarsest block (all samples with the predictive route)\n"
+    "                        is predicted: neighbour (MED / Lorenzo), weighted (spec 5.7.5;\n"
+    "                        range coding only) or auto (the smaller; default)\n"
     "  --bits-per-sample R   the best quality within R bits per sample\n"
     "  --psnr P              the smallest stream with PSNR >= P dB (peak: max - min)\n"
     "                        (integer samples: the predictive route, which is not\n"
@@ -179,7 +182,7 @@ int runEncode(int argc, char** argv) {
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy",
-                    "wavelet"},
+                    "wavelet", "prediction"},
                    {"quiet", "help", "lossless", "progressive"},
                    {"meta"}},
                   &error))
@@ -260,6 +263,15 @@ int runEncode(int argc, char** argv) {
     if (args.value("entropy") == "baseline") wavelet.entropy_mode = kEntropyBaseline;
     else if (args.value("entropy") != "adaptive")
       return fail(cmd, "--entropy must be adaptive or baseline", kExitUsage);
+  }
+  if (args.has("prediction")) {
+    const std::string& p = args.value("prediction");
+    if (p == "neighbour") wavelet.prediction = WaveletEncodeOptions::Prediction::kNeighbour;
+    else if (p == "weighted") wavelet.prediction = WaveletEncodeOptions::Prediction::kWeighted;
+    else if (p != "auto") return fail(cmd, "--prediction must be auto, neighbour or weighted", kExitUsage);
+    if (wavelet.prediction == WaveletEncodeOptions::Prediction::kWeighted &&
+        wavelet.entropy_mode == kEntropyBaseline)
+      return fail(cmd, "--prediction weighted needs --entropy adaptive", kExitUsage);
   }
   if (args.has("bound-route")) {
     const std::string& r = args.value("bound-route");

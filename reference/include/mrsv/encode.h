@@ -44,6 +44,10 @@ struct WaveletEncodeOptions {
   // (often smaller, not progressive); kAuto keeps the smaller stream.
   enum class BoundRoute { kAuto, kResidual, kPredictive };
   BoundRoute bound_route = BoundRoute::kAuto;
+  // How the coarsest block is predicted (spec 5.7.4, 5.7.5): kAuto codes it both
+  // ways and keeps the smaller (weighted only with range coding).
+  enum class Prediction { kAuto, kNeighbour, kWeighted };
+  Prediction prediction = Prediction::kAuto;
   // Only streams with decomposition levels (every prefix a coarser
   // approximation): the predictive route is not considered, neither for an
   // error bound (as kResidual) nor, for integer samples, beside the wavelets

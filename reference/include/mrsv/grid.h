@@ -80,7 +80,9 @@ struct WaveletHeader {
 
 // spec: 5.3 band_header(), the first 12 bytes of a GBND payload.
 constexpr size_t kBandHeaderSize = 12;
-constexpr uint8_t kBandFlagPredicted = 0x01;
+constexpr uint8_t kBandPredictionMask = 0x03;  // bits 0-1: prediction 0 none, 1 neighbour, 2 weighted
+constexpr uint8_t kBandPredictionNeighbour = 1;
+constexpr uint8_t kBandPredictionWeighted = 2;
 // spec: 5.5 residual_header(), the first 4 bytes of a GRES payload.
 constexpr size_t kResidualHeaderSize = 4;
 constexpr uint32_t kMaxResidualStep = 1u << 20;

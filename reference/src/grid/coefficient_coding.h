@@ -26,6 +26,8 @@ enum class ArrayPrediction : uint8_t {
   kNone = 0,      // values coded as they are (detail bands, residuals)
   kNeighbour = 1, // each value coded as the difference to a prediction from its
                   // decoded neighbours (the coarsest scaling block)
+  kWeighted = 2,  // weighted prediction with its own contexts (spec 5.7.5,
+                  // weighted_array_coding.h; codeArray never sees it)
 };
 
 constexpr int kMagnitudeClasses = 10;

@@ -15,6 +15,7 @@
 #include "grid/array_decoding.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
+#include "grid/weighted_array_coding.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/synthesis_fixed.h"
 
@@ -70,7 +71,10 @@ Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t si
     ok = decodeUnpredictedArray(&rc, box, skip, out, magnitudes);
   } else {
     DecodingCoder coder{&rc};
-    ok = codeArray(coder, out.data, symbols, box, prediction, skip);
+    // Weighted arrays (spec 5.7.5) are only bands, which have no skipped positions.
+    ok = prediction == ArrayPrediction::kWeighted
+             ? skip == nullptr && codeWeightedArray(coder, out.data, symbols, box)
+             : codeArray(coder, out.data, symbols, box, prediction, skip);
   }
   if (!ok) return fail("a magnitude prefix is longer than 39 bits");
   if (rc.overrun() != 0) return fail("coded data ends before the array does");
@@ -159,9 +163,14 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   if (band_index != index)
     return fail(0, "band_index", "band " + std::to_string(band_index) + " where band " +
                                      std::to_string(index) + " is next");
-  if (band_flags & ~kBandFlagPredicted)
+  if (band_flags & ~kBandPredictionMask)
     return Error{Status::kReservedNonZero, chunk.payloadOffset() + 2, "GBND.band_flags",
                  "reserved bits must be 0"};
+  const uint8_t prediction_code = band_flags & kBandPredictionMask;
+  if (prediction_code > kBandPredictionWeighted)
+    return fail(2, "band_flags", "prediction 3 is reserved");
+  if (prediction_code == kBandPredictionWeighted && s->header.entropy_mode == kEntropyBaseline)
+    return fail(2, "band_flags", "weighted prediction needs entropy_mode 1");
   if (reserved != 0)
     return Error{Status::kReservedNonZero, chunk.payloadOffset() + 3, "GBND.reserved", "must be 0"};
   if (step > static_cast<uint64_t>(kValueLimit))
@@ -182,8 +191,12 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   ArrayBox box;
   box.num_dims = s->plan.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-  ArrayPrediction prediction =
-      (band_flags & kBandFlagPredicted) ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone;
+  const ArrayPrediction prediction = static_cast<ArrayPrediction>(prediction_code);
+  // The weighted predictor keeps two rows of errors (spec 5.7.5) besides the arrays.
+  if (prediction == ArrayPrediction::kWeighted) {
+    const uint64_t state = uint64_t{box.size[0]} * WeightedPredictor::kBytesPerColumn;
+    if (Error e = checkMemory(s->plan.paddedCount() * 16 + state, options, chunk); !e.ok()) return e;
+  }
   // The band's box in the padded array (the Mallat layout).
   const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
   const ArrayDestination place{s->coefficients.get() + band.offset[0] + band.offset[1] * px +
@@ -199,7 +212,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     if (in_place && s->band_magnitudes.size() < box.count())
       s->band_magnitudes.resize(box.count());
     if (!in_place && s->band_values.size() < box.count()) s->band_values.resize(box.count());
-    if (prediction == ArrayPrediction::kNeighbour && s->band_symbols.size() < box.count())
+    if (prediction != ArrayPrediction::kNone && s->band_symbols.size() < box.count())
       s->band_symbols.resize(box.count());
   } catch (const std::bad_alloc&) {
     return checkMemory(UINT64_MAX, options, chunk);

@@ -12,6 +12,7 @@
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
+#include "grid/weighted_array_coding.h"
 #include "mrsv/encode.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/synthesis_fixed.h"
@@ -47,8 +48,43 @@ void encodeArray(uint8_t entropy_mode, int64_t* values, const ArrayBox& box,
   std::vector<int64_t> symbols(box.count());
   RangeEncoder rc(out);
   EncodingCoder coder{&rc};
-  codeArray(coder, values, symbols.data(), box, prediction, skip);
+  if (prediction == ArrayPrediction::kWeighted)
+    codeWeightedArray(coder, values, symbols.data(), box);  // bands only: no skip
+  else
+    codeArray(coder, values, symbols.data(), box, prediction, skip);
   rc.finish();
+}
+
+// With no decomposition the coarsest block is the samples, and a void (valid
+// 0) costs least when it holds exactly its prediction: its residual is 0, and
+// the mask restores the no-data value anyway. Fills in raster order, so that
+// each prediction sees the filled values as the decoder will.
+void fillVoidsWithPredictions(int64_t* values, const ArrayBox& box, ArrayPrediction prediction,
+                              const uint8_t* valid) {
+  const size_t sx = box.size[0], sxy = sx * box.size[1];
+  if (prediction == ArrayPrediction::kNeighbour) {
+    for (uint32_t z = 0; z < box.size[2]; ++z)
+      for (uint32_t y = 0; y < box.size[1]; ++y)
+        for (uint32_t x = 0; x < box.size[0]; ++x) {
+          const size_t i = x + y * sx + z * sxy;
+          if (!valid[i]) values[i] = clampArrayValue(predictNeighbour(values, box, x, y, z));
+        }
+    return;
+  }
+  WeightedPredictor predictor;
+  if (!predictor.init(box.size[0])) return;  // the pull-push fill stays
+  for (uint32_t z = 0; z < box.size[2]; ++z)
+    for (uint32_t y = 0; y < box.size[1]; ++y) {
+      int64_t* row = values + y * sx + z * sxy;
+      const int64_t* up = y > 0 ? row - sx : nullptr;
+      const int64_t* up2 = y > 1 ? row - 2 * sx : nullptr;
+      for (uint32_t x = 0; x < box.size[0]; ++x) {
+        const int64_t p = predictor.predict(row, up, up2, x);
+        if (!valid[row - values + x]) row[x] = clampArrayValue(p);
+        predictor.record(x, row[x]);
+      }
+      predictor.nextRow();
+    }
 }
 
 Error invalid(std::string field, std::string message) {
@@ -191,6 +227,7 @@ class GridEncoder {
   double c_min_ = 0, c_max_ = 0;
   double scale_ = 1;                  // sample units per x unit
   std::vector<uint8_t> mask_chunk_;
+  WaveletEncodeOptions::Prediction prediction_ = WaveletEncodeOptions::Prediction::kAuto;
   // Oracles.
   double keep_threshold_ = 0;   // importance below which a detail coefficient is dropped
   bool has_roi_ = false;
@@ -235,6 +272,9 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   // spec: 5.2 and decision D6: x = (sample - c_min) / scale, so x spans [0, R / scale].
   wavelet_.order = static_cast<uint8_t>(options.order);
   wavelet_.entropy_mode = options.entropy_mode;
+  // Weighted prediction exists only with range coding (spec 5.3).
+  prediction_ = options.entropy_mode == kEntropyBaseline ? WaveletEncodeOptions::Prediction::kNeighbour
+                                                         : options.prediction;
   double r = c_max_ - c_min_;
   if (integerSamples()) {
     scale_ = 1;
@@ -468,16 +508,41 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
   std::vector<uint8_t> payload;
   ByteWriter w(&payload);
   w.u16(index);
-  w.u8(coarsest ? kBandFlagPredicted : 0);
+  w.u8(0);  // band_flags, set below
   w.u8(0);
   w.u64(step);
-  if (step) {
-    ArrayBox box;
-    box.num_dims = plan_.num_dims;
-    for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-    encodeArray(wavelet_.entropy_mode, q.data(), box,
-                coarsest ? ArrayPrediction::kNeighbour : ArrayPrediction::kNone, nullptr, &payload);
+  if (!step) return payload;
+  ArrayBox box;
+  box.num_dims = plan_.num_dims;
+  for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
+  if (!coarsest) {
+    encodeArray(wavelet_.entropy_mode, q.data(), box, ArrayPrediction::kNone, nullptr, &payload);
+    return payload;
   }
+  // The coarsest block is coded with neighbour prediction and, with range
+  // coding, also with weighted prediction; the smaller one is kept (5.9).
+  // Weighted prediction wins on terrains, the Lorenzo predictor on most CT volumes.
+  const bool samples = box.count() == valid_.size() && valid_count_ < valid_.size();
+  std::vector<uint8_t> best;
+  uint8_t best_flags = 0;
+  for (uint8_t code : {kBandPredictionNeighbour, kBandPredictionWeighted}) {
+    if (code == kBandPredictionWeighted && wavelet_.entropy_mode != kEntropyAdaptive) continue;
+    if (prediction_ != WaveletEncodeOptions::Prediction::kAuto &&
+        prediction_ != (code == kBandPredictionWeighted ? WaveletEncodeOptions::Prediction::kWeighted
+                                                       : WaveletEncodeOptions::Prediction::kNeighbour))
+      continue;
+    const ArrayPrediction prediction = static_cast<ArrayPrediction>(code);
+    std::vector<int64_t> values = q;
+    if (samples) fillVoidsWithPredictions(values.data(), box, prediction, valid_.data());
+    std::vector<uint8_t> coded;
+    encodeArray(wavelet_.entropy_mode, values.data(), box, prediction, nullptr, &coded);
+    if (best_flags == 0 || coded.size() < best.size()) {
+      best.swap(coded);
+      best_flags = code;
+    }
+  }
+  payload[2] = best_flags;
+  payload.insert(payload.end(), best.begin(), best.end());
   return payload;
 }
 
