@@ -23,35 +23,31 @@ AxisSupports::AxisSupports(const wavelet::AxisPlan& axis) {
   }
   // A coarse function is a combination of contiguous fine functions (one
   // column of P or Q): its support spans theirs.
-  for (int l = 1; l <= levels && wavelet::isCdf97(axis.order); ++l) {
-    // spec 4.11: low-pass value i reaches fine positions 2i-3..2i+3 and
-    // high-pass value i positions 2i-3..2i+5 (mirroring at the ends stays
-    // inside these ranges once they are cut to the line).
-    const auto& flo = scaling_lo_[static_cast<size_t>(l - 1)];
-    const auto& fhi = scaling_hi_[static_cast<size_t>(l - 1)];
-    const int64_t last = int64_t{axis.size(l - 1)} - 1;
-    auto span = [&](int64_t a, int64_t b, std::vector<uint32_t>* lo, std::vector<uint32_t>* hi) {
-      lo->push_back(flo[static_cast<size_t>(std::clamp<int64_t>(a, 0, last))]);
-      hi->push_back(fhi[static_cast<size_t>(std::clamp<int64_t>(b, 0, last))]);
+  for (int l = 1; l <= levels; ++l) {
+    const size_t fine = static_cast<size_t>(l - 1), coarse = static_cast<size_t>(l);
+    const int64_t end = int64_t{axis.size(l - 1)} - 1;
+    // A function combining the fine functions [first, last] (cut to the line).
+    auto add = [&](int64_t first, int64_t last, std::vector<uint32_t>* lo, std::vector<uint32_t>* hi) {
+      lo->push_back(scaling_lo_[fine][static_cast<size_t>(std::clamp<int64_t>(first, 0, end))]);
+      hi->push_back(scaling_hi_[fine][static_cast<size_t>(std::clamp<int64_t>(last, 0, end))]);
     };
-    for (int64_t i = 0; i < int64_t{axis.size(l)}; ++i)
-      span(2 * i - 3, 2 * i + 3, &scaling_lo_[static_cast<size_t>(l)], &scaling_hi_[static_cast<size_t>(l)]);
-    for (int64_t i = 0; i < int64_t{axis.size(l - 1) - axis.size(l)}; ++i)
-      span(2 * i - 3, 2 * i + 5, &wavelet_lo_[static_cast<size_t>(l)], &wavelet_hi_[static_cast<size_t>(l)]);
-  }
-  for (int l = 1; l <= levels && !wavelet::isCdf97(axis.order); ++l) {
+    if (wavelet::isCdf97(axis.order)) {
+      // spec 4.11.3: low value i reaches fine positions 2i-3..2i+3, high value i
+      // 2i-3..2i+5 (mirroring at the ends stays inside these once cut).
+      for (int64_t i = 0; i < int64_t{axis.size(l)}; ++i)
+        add(2 * i - 3, 2 * i + 3, &scaling_lo_[coarse], &scaling_hi_[coarse]);
+      for (int64_t i = 0; i < int64_t{axis.size(l - 1) - axis.size(l)}; ++i)
+        add(2 * i - 3, 2 * i + 5, &wavelet_lo_[coarse], &wavelet_hi_[coarse]);
+      continue;
+    }
     const wavelet::LevelFilters f(axis.order, axis.intervals(l));
-    const auto& flo = scaling_lo_[static_cast<size_t>(l - 1)];
-    const auto& fhi = scaling_hi_[static_cast<size_t>(l - 1)];
     for (uint32_t j = 0; j < f.coarse(); ++j) {
-      wavelet::Column c = f.p(j);
-      scaling_lo_[static_cast<size_t>(l)].push_back(flo[c.first_row]);
-      scaling_hi_[static_cast<size_t>(l)].push_back(fhi[c.first_row + static_cast<uint32_t>(c.count) - 1]);
+      const wavelet::Column c = f.p(j);
+      add(c.first_row, int64_t{c.first_row} + c.count - 1, &scaling_lo_[coarse], &scaling_hi_[coarse]);
     }
     for (uint32_t j = 0; j < f.wavelets(); ++j) {
-      wavelet::Column c = f.q(j);
-      wavelet_lo_[static_cast<size_t>(l)].push_back(flo[c.first_row]);
-      wavelet_hi_[static_cast<size_t>(l)].push_back(fhi[c.first_row + static_cast<uint32_t>(c.count) - 1]);
+      const wavelet::Column c = f.q(j);
+      add(c.first_row, int64_t{c.first_row} + c.count - 1, &wavelet_lo_[coarse], &wavelet_hi_[coarse]);
     }
   }
 }

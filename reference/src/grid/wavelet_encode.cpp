@@ -3,6 +3,7 @@
 // residual layer that makes pointwise error bounds and lossless coding exact.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -416,34 +417,35 @@ void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
 
 // Sets to 0 every +-1 of `q` (band `band`, quantised with `inv` fixed-point
 // units per x unit) whose neighbours in the band (the 8 or 26 around it) are
-// all 0 and whose coefficient is below 0.9 steps; decided on `q` as it came,
-// so the order of the walk does not matter. Returns whether any value is left.
+// all 0 and whose coefficient is below 0.9 steps. Done in place: a value set
+// to 0 had only zeros around it, so no other candidate sees the change, and
+// the result is that of deciding on `q` as it came. Returns whether any value
+// is left.
 bool GridEncoder::dropLoneUnits(const Band& band, double inv, std::vector<int64_t>* q) const {
   constexpr double kLoneUnitFloor = 0.9;
-  const std::vector<int64_t> first = *q;
+  std::vector<int64_t>& v = *q;
   const int64_t sx = band.size[0], sy = band.size[1], sz = band.size[2];
   const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
   auto at = [&](int64_t x, int64_t y, int64_t z) { return static_cast<size_t>(x + sx * (y + sy * z)); };
+  auto alone = [&](int64_t x, int64_t y, int64_t z) {
+    for (int64_t nz = std::max<int64_t>(z - 1, 0); nz <= std::min(z + 1, sz - 1); ++nz)
+      for (int64_t ny = std::max<int64_t>(y - 1, 0); ny <= std::min(y + 1, sy - 1); ++ny)
+        for (int64_t nx = std::max<int64_t>(x - 1, 0); nx <= std::min(x + 1, sx - 1); ++nx)
+          if ((nx != x || ny != y || nz != z) && v[at(nx, ny, nz)] != 0) return false;
+    return true;
+  };
   bool any = false;
   for (int64_t z = 0; z < sz; ++z)
     for (int64_t y = 0; y < sy; ++y)
       for (int64_t x = 0; x < sx; ++x) {
-        int64_t& v = (*q)[at(x, y, z)];
-        if (v == 1 || v == -1) {
-          bool alone = true;
-          for (int64_t nz = std::max<int64_t>(z - 1, 0); nz <= std::min(z + 1, sz - 1) && alone; ++nz)
-            for (int64_t ny = std::max<int64_t>(y - 1, 0); ny <= std::min(y + 1, sy - 1) && alone; ++ny)
-              for (int64_t nx = std::max<int64_t>(x - 1, 0); nx <= std::min(x + 1, sx - 1); ++nx)
-                if ((nx != x || ny != y || nz != z) && first[at(nx, ny, nz)] != 0) {
-                  alone = false;
-                  break;
-                }
+        int64_t& value = v[at(x, y, z)];
+        if ((value == 1 || value == -1) && alone(x, y, z)) {
           const double c = coefficients_[band.offset[0] + static_cast<uint64_t>(x) +
                                          (band.offset[1] + static_cast<uint64_t>(y)) * px +
                                          (band.offset[2] + static_cast<uint64_t>(z)) * pxy];
-          if (alone && std::fabs(c * inv) < kLoneUnitFloor) v = 0;
+          if (std::fabs(c * inv) < kLoneUnitFloor) value = 0;
         }
-        any |= v != 0;
+        any |= value != 0;
       }
   return any;
 }
@@ -678,9 +680,20 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   if (Error e = wavelet_enc.prepare(header, samples, options); !e.ok()) return e;
   WaveletEncodeReport rep;
   const double n = static_cast<double>(header.sampleCount());
-  auto finish = [&](std::vector<uint8_t>&& stream, double delta, uint32_t residual_step) -> Error {
+  // What decoding a stream measured (GridEncoder::measure).
+  struct Measured {
+    double psnr = 0, max_error = 0;
+  };
+  // `known`: the measure of `stream` when the caller has it already.
+  auto finish = [&](std::vector<uint8_t>&& stream, double delta, uint32_t residual_step,
+                    const std::optional<Measured>& known = std::nullopt) -> Error {
     GridEncoder& enc = *used;
-    if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error); !e.ok()) return e;
+    if (known) {
+      rep.psnr = known->psnr;
+      rep.max_abs_error = known->max_error;
+    } else if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error); !e.ok()) {
+      return e;
+    }
     // Record the figures in the meta chunk (spec 2.6 error_* keys): the chunk
     // is replaced, the coded chunks stay as they are.
     Metadata recorded = metadata;
@@ -765,6 +778,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
   std::vector<uint8_t> stream, best;
   double best_delta = 0;
+  std::optional<Measured> best_measured;  // of `best`, when the PSNR search decoded it
   if (options.keep_fraction > 0) {
     // Global oracle: the base step is the importance threshold, so that every
     // kept coefficient quantises to at least 1 and every dropped one to 0.
@@ -795,18 +809,19 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     if (Error e = enc.encode(delta, 0, metadata, &stream); !e.ok()) return e;
     ++rep.iterations;
     bool meets;
+    Measured m;
     if (by_rate) {
       meets = static_cast<double>(stream.size()) <= target_bytes;
     } else {
-      double psnr, worst;
-      if (Error e = enc.measure(stream, &psnr, &worst); !e.ok()) return e;
-      meets = psnr >= options.psnr;
+      if (Error e = enc.measure(stream, &m.psnr, &m.max_error); !e.ok()) return e;
+      meets = m.psnr >= options.psnr;
     }
     // A larger step gives a smaller stream and a lower PSNR: for a rate keep the
     // smallest step that fits, for a PSNR the largest step that reaches it.
     if (meets) {
       best.swap(stream);
       best_delta = delta;
+      if (!by_rate) best_measured = m;
       (by_rate ? hi : lo) = mid;
       if (by_rate && static_cast<double>(best.size()) >= 0.995 * target_bytes) break;
     } else {
@@ -819,7 +834,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
                            : "the PSNR target cannot be met");
   }
   if (!enc.integerSamples() || options.progressive || options.has_roi)
-    return finish(std::move(best), best_delta, 0);
+    return finish(std::move(best), best_delta, 0, best_measured);
 
   // The predictive route as a second candidate (informative 5.9 item 6): no
   // decomposition, the samples quantised with step 2d+1 and neighbour
@@ -827,8 +842,11 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   // data it beats the wavelets, and when the lossless stream fits (d = 0) it is
   // exact. Its error is close to uniform on -d..d, MSE d(d+1)/3, which bounds
   // the d worth trying.
-  double wavelet_psnr, worst;
-  if (Error e = enc.measure(best, &wavelet_psnr, &worst); !e.ok()) return e;
+  if (!best_measured) {
+    best_measured.emplace();
+    if (Error e = enc.measure(best, &best_measured->psnr, &best_measured->max_error); !e.ok()) return e;
+  }
+  const double wavelet_psnr = best_measured->psnr;
   WaveletEncodeOptions flat = options;
   flat.max_levels = 0;
   if (Error e = predictive_enc.prepare(header, samples, flat); !e.ok()) return e;
@@ -843,6 +861,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   };
   std::vector<uint8_t> candidate;
   uint32_t candidate_d = 0;
+  Measured candidate_measured;
   if (by_rate) {
     // The smallest d that fits, searched below the d whose uniform-error MSE
     // is twice the wavelet stream's (beyond it the wavelets surely win).
@@ -864,21 +883,21 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
           fails = mid;
         }
       }
-      double psnr;
-      if (Error e = predictive_enc.measure(candidate, &psnr, &worst); !e.ok()) return e;
+      Measured& m = candidate_measured;
+      if (Error e = predictive_enc.measure(candidate, &m.psnr, &m.max_error); !e.ok()) return e;
       // Kept when better, or as good (both exact) and smaller.
-      if (!(psnr > wavelet_psnr || (psnr == wavelet_psnr && candidate.size() < best.size())))
+      if (!(m.psnr > wavelet_psnr || (m.psnr == wavelet_psnr && candidate.size() < best.size())))
         candidate.clear();
     }
   } else {
     // The largest d that reaches the PSNR, from the uniform-error estimate
     // down by halving (d = 0 is exact and always reaches it).
     uint32_t d = largestBound(range_sq / std::pow(10.0, options.psnr / 10));
+    Measured& m = candidate_measured;
     while (true) {
       if (Error e = predictiveAt(d, &stream); !e.ok()) return e;
-      double psnr;
-      if (Error e = predictive_enc.measure(stream, &psnr, &worst); !e.ok()) return e;
-      if (psnr >= options.psnr || d == 0) break;
+      if (Error e = predictive_enc.measure(stream, &m.psnr, &m.max_error); !e.ok()) return e;
+      if (m.psnr >= options.psnr || d == 0) break;
       d /= 2;
     }
     if (stream.size() < best.size()) {
@@ -886,9 +905,9 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
       candidate_d = d;
     }
   }
-  if (candidate.empty()) return finish(std::move(best), best_delta, 0);
+  if (candidate.empty()) return finish(std::move(best), best_delta, 0, best_measured);
   used = &predictive_enc;
-  return finish(std::move(candidate), static_cast<double>(2 * candidate_d + 1), 0);
+  return finish(std::move(candidate), static_cast<double>(2 * candidate_d + 1), 0, candidate_measured);
 }
 
 }  // namespace mrsv

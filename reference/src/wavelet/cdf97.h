@@ -7,6 +7,7 @@
 // of 4.11; only the synthesis of one level differs.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "wavelet/axis_plan.h"
@@ -27,9 +28,13 @@ constexpr int64_t kCdf97K = 20638897;       //  1.230174104914001
 // same contract on `data`, saturation to +-kValueLimit included.
 void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level);
 
-// Real-valued analysis and synthesis (informative, the encoder's): the exact
-// inverse pair of which 4.11.3 is the rounded synthesis.
-void analyzeCdf97(const GridPlan& plan, double* data);
-void synthesizeCdf97(const GridPlan& plan, double* data, int stop_level);
+// Real-valued analysis and synthesis of one level along one axis (informative,
+// the encoder's; transform_float.cpp walks the levels and axes): the exact
+// inverse pair that 4.11.3 rounds, over a batch of `width` interleaved lines
+// of `len` values (line_batches.h layout). Analysis: natural order in `x`
+// (overwritten) to the low half, then the high half, in `out`; synthesis the
+// reverse, `in` to natural order in `x`.
+void analyzeCdf97Lines(double* x, double* out, size_t len, int width);
+void synthesizeCdf97Lines(const double* in, double* x, size_t len, int width);
 
 }  // namespace mrsv::wavelet

@@ -308,7 +308,6 @@ void paddedSizes(const GridPlan& plan, uint32_t padded[3]) {
 // synthesis; the axes commute, so any order gives the same result up to rounding).
 void analyze(const GridPlan& plan, double* data) {
   if (!isValidGridPlan(plan)) return;
-  if (isCdf97(plan.axis[0].order)) return analyzeCdf97(plan, data);
   uint32_t padded[3];
   paddedSizes(plan, padded);
   std::vector<double> in, out, scratch;
@@ -318,6 +317,12 @@ void analyze(const GridPlan& plan, double* data) {
     for (int a = 2; a >= 0; --a) {
       const AxisPlan& axis = plan.axis[a];
       if (axis.levels < level) continue;
+      if (isCdf97(axis.order)) {  // spec 4.11.5
+        forEachLineBatch(padded, box, a, data, &in, &out, [&](double* src, double* dst, int width) {
+          analyzeCdf97Lines(src, dst, box[a], width);
+        });
+        continue;
+      }
       const LevelAnalysis step(axis.order, axis.intervals(level));
       forEachLineBatch(padded, box, a, data, &in, &out,
                        [&](double* src, double* dst, int width) {
@@ -329,7 +334,6 @@ void analyze(const GridPlan& plan, double* data) {
 
 void synthesize(const GridPlan& plan, double* data, int stop_level) {
   if (!isValidGridPlan(plan)) return;
-  if (isCdf97(plan.axis[0].order)) return synthesizeCdf97(plan, data, stop_level);
   if (stop_level < 0) stop_level = 0;
   uint32_t padded[3];
   paddedSizes(plan, padded);
@@ -340,6 +344,12 @@ void synthesize(const GridPlan& plan, double* data, int stop_level) {
     for (int a = 0; a < 3; ++a) {
       const AxisPlan& axis = plan.axis[a];
       if (axis.levels < level) continue;
+      if (isCdf97(axis.order)) {  // spec 4.11.5
+        forEachLineBatch(padded, box, a, data, &in, &out, [&](double* src, double* dst, int width) {
+          synthesizeCdf97Lines(src, dst, box[a], width);
+        });
+        continue;
+      }
       const LevelFilters filters(axis.order, axis.intervals(level));
       forEachLineBatch(padded, box, a, data, &in, &out,
                        [&](double* src, double* dst, int width) {
@@ -362,7 +372,7 @@ std::vector<double> axisBasisNorms(const AxisPlan& axis) {
     auto bandNorm = [&](uint32_t first, uint32_t end) {
       std::vector<double> line(axis.size(0), 0.0);
       line[(first + end) / 2] = 1.0;
-      synthesizeCdf97(check, line.data(), 0);
+      synthesize(check, line.data());
       double e = 0;
       for (double v : line) e += v * v;
       std::fill(norms.begin() + first, norms.begin() + end, std::sqrt(e));
