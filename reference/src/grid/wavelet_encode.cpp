@@ -13,6 +13,7 @@
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
+#include "grid/rd_quantizer.h"
 #include "grid/weighted_array_coding.h"
 #include "mrsv/encode.h"
 #include "wavelet/axis_plan.h"
@@ -474,6 +475,28 @@ uint64_t GridEncoder::quantizeBand(uint16_t index, double delta, std::vector<int
   const int64_t q_limit = wavelet::kValueLimit / static_cast<int64_t>(step);
   q->assign(uint64_t{band.size[0]} * band.size[1] * band.size[2], 0);
   const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  // Rate-distortion optimised quantisation (rd_quantizer.h) for detail bands
+  // under the global rate or PSNR oracles with range coding. Lambda = 0.09
+  // squared steps per bit measured best on the terrains at 0.5 to 2
+  // bits/sample (+0.13 to +0.25 dB over the dead zone below; 0.05 and 0.13 are
+  // worse). Below a step of half a sample unit the decoder's rounding to
+  // integer samples hides most errors, and the coefficient-domain estimate
+  // misleads (the chest CT at 2 bits/sample, 96.7 dB, lost 2.2 dB), so there
+  // the dead zone stays.
+  constexpr double kRdLambda = 0.09;
+  if (!coarsest && !has_roi_ && keep_threshold_ == 0 && wavelet_.entropy_mode == kEntropyAdaptive &&
+      (!integerSamples() || delta * scale_ >= 0.5)) {
+    std::vector<double> scaled(q->size());
+    size_t k = 0;
+    for (uint32_t z = 0; z < band.size[2]; ++z)
+      for (uint32_t y = 0; y < band.size[1]; ++y) {
+        const double* row = coefficients_.data() + band.offset[0] + (band.offset[1] + y) * px +
+                            (band.offset[2] + z) * pxy;
+        for (uint32_t x = 0; x < band.size[0]; ++x) scaled[k++] = row[x] * inv;
+      }
+    return rdQuantizeArray(scaled.data(), ArrayBox{{band.size[0], band.size[1], band.size[2]}, plan_.num_dims},
+                           kRdLambda, q_limit, q->data()) ? step : 0;
+  }
   bool any = false;
   size_t k = 0;
   for (uint32_t z = 0; z < band.size[2]; ++z)
