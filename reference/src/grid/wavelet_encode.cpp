@@ -14,6 +14,7 @@
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
 #include "grid/rd_quantizer.h"
+#include "grid/void_fill.h"
 #include "grid/weighted_array_coding.h"
 #include "mrsv/encode.h"
 #include "wavelet/axis_plan.h"
@@ -91,64 +92,6 @@ void fillVoidsWithPredictions(int64_t* values, const ArrayBox& box, ArrayPredict
 
 Error invalid(std::string field, std::string message) {
   return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
-}
-
-// Fills the voids of `x` (valid[i] == 0) by pull-push: averages of valid
-// samples over dyadic blocks, pushed back down into the voids. Smooth fills
-// cost few wavelet bits, and the mask restores the voids exactly anyway.
-void fillVoids(std::vector<double>* x, const std::vector<uint8_t>& valid, const uint32_t size[3]) {
-  struct Level {
-    uint32_t size[3];
-    std::vector<double> sum;
-    std::vector<double> weight;
-  };
-  std::vector<Level> pyramid(1);
-  Level& base = pyramid[0];
-  std::copy(size, size + 3, base.size);
-  base.sum.resize(x->size());
-  base.weight.resize(x->size());
-  for (size_t i = 0; i < x->size(); ++i) {
-    base.weight[i] = valid[i] ? 1.0 : 0.0;
-    base.sum[i] = valid[i] ? (*x)[i] : 0.0;
-  }
-  while (pyramid.back().size[0] > 1 || pyramid.back().size[1] > 1 || pyramid.back().size[2] > 1) {
-    const Level& fine = pyramid.back();
-    Level coarse;
-    for (int a = 0; a < 3; ++a) coarse.size[a] = (fine.size[a] + 1) / 2;
-    size_t n = size_t{coarse.size[0]} * coarse.size[1] * coarse.size[2];
-    coarse.sum.assign(n, 0.0);
-    coarse.weight.assign(n, 0.0);
-    for (uint32_t z = 0; z < fine.size[2]; ++z)
-      for (uint32_t y = 0; y < fine.size[1]; ++y)
-        for (uint32_t xx = 0; xx < fine.size[0]; ++xx) {
-          size_t f = xx + fine.size[0] * (y + size_t{fine.size[1]} * z);
-          size_t c = xx / 2 + coarse.size[0] * (y / 2 + size_t{coarse.size[1]} * (z / 2));
-          coarse.sum[c] += fine.sum[f];
-          coarse.weight[c] += fine.weight[f];
-        }
-    pyramid.push_back(std::move(coarse));
-  }
-  // Push: a cell without valid samples takes its parent's average.
-  for (size_t l = pyramid.size() - 1; l-- > 0;) {
-    Level& fine = pyramid[l];
-    const Level& coarse = pyramid[l + 1];
-    for (uint32_t z = 0; z < fine.size[2]; ++z)
-      for (uint32_t y = 0; y < fine.size[1]; ++y)
-        for (uint32_t xx = 0; xx < fine.size[0]; ++xx) {
-          size_t f = xx + fine.size[0] * (y + size_t{fine.size[1]} * z);
-          size_t c = xx / 2 + coarse.size[0] * (y / 2 + size_t{coarse.size[1]} * (z / 2));
-          if (fine.weight[f] == 0 && coarse.weight[c] > 0) {
-            fine.sum[f] = coarse.sum[c] / coarse.weight[c];
-            fine.weight[f] = 1;
-          } else if (fine.weight[f] > 0) {
-            fine.sum[f] /= fine.weight[f];
-            fine.weight[f] = 1;
-          }
-        }
-  }
-  const Level& filled = pyramid[0];  // `base` dangles once the pyramid has grown
-  for (size_t i = 0; i < x->size(); ++i)
-    if (!valid[i]) (*x)[i] = filled.weight[i] > 0 ? filled.sum[i] : 0.0;
 }
 
 // Sample-domain L2 gain of one interior coefficient of a 1-D axis: the
@@ -317,17 +260,8 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   // of every axis (constants cost no detail coefficients).
   std::vector<double> x(n);
   for (size_t i = 0; i < n; ++i) x[i] = valid_[i] ? (values_[i] - c_min_) / scale_ : 0.0;
-  if (valid_count_ < n) fillVoids(&x, valid_, size);
-  const uint32_t px = plan_.axis[0].size(0), py = plan_.axis[1].size(0), pz = plan_.axis[2].size(0);
-  coefficients_.assign(plan_.paddedCount(), 0.0);
-  for (uint32_t z = 0; z < pz; ++z)
-    for (uint32_t y = 0; y < py; ++y)
-      for (uint32_t xx = 0; xx < px; ++xx) {
-        uint32_t sx = std::min(xx, size[0] - 1), sy = std::min(y, size[1] - 1),
-                 sz = std::min(z, size[2] - 1);
-        coefficients_[xx + px * (y + size_t{py} * z)] = x[sx + size[0] * (sy + size_t{size[1]} * sz)];
-      }
-  wavelet::analyze(plan_, coefficients_.data());
+  if (valid_count_ < n) fillVoidsPullPush(&x, valid_, size);
+  analyzeSamples(plan_, size, x, &coefficients_);
 
   AxisGains gains[3];
   for (int a = 0; a < 3; ++a) gains[a] = axisGains(plan_.axis[a]);
@@ -342,6 +276,8 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
     band_gain_.push_back(g);
   }
 
+  if (valid_count_ < n)
+    refineVoidFill(plan_, size, bands_, band_gain_, valid_, (c_max_ - c_min_) / scale_, &x, &coefficients_);
   prepareOracles(options);
 
   if (valid_count_ < n) {
