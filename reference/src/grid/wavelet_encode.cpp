@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "bitstream/range_coder_adapter.h"
 #include "common/byte_writer.h"
@@ -734,7 +735,6 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
 
   // Lossy: find the base step by bisection on its logarithm.
   const double r = std::max(enc.range(), 1e-300) * enc.unitsPerSample();
-  double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
   std::vector<uint8_t> stream, best;
   double best_delta = 0;
   std::optional<Measured> best_measured;  // of `best`, when the PSNR search decoded it
@@ -763,28 +763,67 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
                                              serializeMetadata(metadata).size()) +
                          (metadata.entries.empty() ? kChunkHeaderSize + kChunkCrcSize : 0);
   const double target_bytes = options.bits_per_sample * n / 8.0 - reserve;
-  for (int it = 0; it < 40 && hi - lo > 1e-3; ++it) {
-    double mid = 0.5 * (lo + hi), delta = std::exp2(mid);
-    if (Error e = enc.encode(delta, 0, metadata, &stream); !e.ok()) return e;
-    ++rep.iterations;
-    bool meets;
-    Measured m;
-    if (by_rate) {
-      meets = static_cast<double>(stream.size()) <= target_bytes;
-    } else {
-      if (Error e = enc.measure(stream, &m.psnr, &m.max_error); !e.ok()) return e;
-      meets = m.psnr >= options.psnr;
+  // The step search on one encoder: for a rate the smallest step that fits,
+  // for a PSNR the largest that reaches it. False when none does.
+  auto search = [&](GridEncoder& e, std::vector<uint8_t>* found, double* found_delta,
+                    std::optional<Measured>* found_measured) -> Error {
+    double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
+    found->clear();
+    for (int it = 0; it < 40 && hi - lo > 1e-3; ++it) {
+      double mid = 0.5 * (lo + hi), delta = std::exp2(mid);
+      if (Error err = e.encode(delta, 0, metadata, &stream); !err.ok()) return err;
+      ++rep.iterations;
+      bool meets;
+      Measured m;
+      if (by_rate) {
+        meets = static_cast<double>(stream.size()) <= target_bytes;
+      } else {
+        if (Error err = e.measure(stream, &m.psnr, &m.max_error); !err.ok()) return err;
+        meets = m.psnr >= options.psnr;
+      }
+      // A larger step gives a smaller stream and a lower PSNR.
+      if (meets) {
+        found->swap(stream);
+        *found_delta = delta;
+        if (!by_rate) *found_measured = m;
+        (by_rate ? hi : lo) = mid;
+        if (by_rate && static_cast<double>(found->size()) >= 0.999 * target_bytes) break;
+      } else {
+        (by_rate ? lo : hi) = mid;
+      }
     }
-    // A larger step gives a smaller stream and a lower PSNR: for a rate keep the
-    // smallest step that fits, for a PSNR the largest step that reaches it.
-    if (meets) {
-      best.swap(stream);
-      best_delta = delta;
-      if (!by_rate) best_measured = m;
-      (by_rate ? hi : lo) = mid;
-      if (by_rate && static_cast<double>(best.size()) >= 0.995 * target_bytes) break;
-    } else {
-      (by_rate ? lo : hi) = mid;
+    if (!found->empty() && !*found_measured) {
+      found_measured->emplace();
+      if (Error err = e.measure(*found, &(*found_measured)->psnr, &(*found_measured)->max_error); !err.ok())
+        return err;
+    }
+    return {};
+  };
+  if (Error e = search(enc, &best, &best_delta, &best_measured); !e.ok()) return e;
+  // Fewer levels as further candidates (decision D28): with the weighted
+  // prediction of the coarsest block, 1 or 2 levels often beat the full
+  // pyramid. `--progressive` and the local oracle keep the full pyramid.
+  std::unique_ptr<GridEncoder> fewer_best;
+  if (!options.progressive && !options.has_roi) {
+    for (int levels : {2, 1}) {
+      if (levels >= enc.levels()) continue;
+      WaveletEncodeOptions fewer = options;
+      fewer.max_levels = levels;
+      auto candidate = std::make_unique<GridEncoder>();
+      if (Error e = candidate->prepare(header, samples, fewer); !e.ok()) return e;
+      std::vector<uint8_t> found;
+      double found_delta = 0;
+      std::optional<Measured> found_measured;
+      if (Error e = search(*candidate, &found, &found_delta, &found_measured); !e.ok()) return e;
+      if (found.empty()) continue;
+      const bool better = best.empty() || (by_rate ? found_measured->psnr > best_measured->psnr
+                                                   : found.size() < best.size());
+      if (!better) continue;
+      best.swap(found);
+      best_delta = found_delta;
+      best_measured = found_measured;
+      fewer_best = std::move(candidate);
+      used = fewer_best.get();
     }
   }
   if (best.empty()) {
