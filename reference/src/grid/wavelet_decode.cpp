@@ -12,6 +12,7 @@
 #include "bitstream/range_coder_adapter.h"
 #include "bitstream/range_decoder.h"
 #include "common/byte_reader.h"
+#include "common/large_array.h"
 #include "grid/array_decoding.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
@@ -99,7 +100,7 @@ struct WaveletState {
   // The padded array in the Mallat layout; null until a band has coded data.
   // Not zeroed when allocated: each band's box is written when the band is read
   // (step 0: zeros) and the boxes of bands not read are zeroed before synthesis.
-  std::unique_ptr<int64_t[]> coefficients;
+  LargeArray<int64_t> coefficients;
   std::vector<uint8_t> band_written;  // per band of the plan
   std::vector<int64_t> band_values;   // scratch for bands not decoded in place
   std::vector<int64_t> band_symbols;  // scratch for predicted bands
@@ -184,7 +185,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   if (!s->coefficients) {
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, chunk); !e.ok()) return e;
-    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    s->coefficients = makeLargeArray<int64_t>(padded);
     if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
   }
   const wavelet::Band& band = s->bands[index];
@@ -351,7 +352,7 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   if (!s->coefficients) {  // every band so far had step 0
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, last); !e.ok()) return e;
-    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    s->coefficients = makeLargeArray<int64_t>(padded);
     if (!s->coefficients) return checkMemory(UINT64_MAX, options, last);
   }
   // The bands with step 0 and those not (yet) in the stream are zero.
