@@ -5,6 +5,7 @@
 // transcription of the pseudo-code of 4.11.3. Fixed seeds throughout.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -41,10 +42,11 @@ std::vector<int64_t> randomValues(std::mt19937_64& rng, size_t n, bool any) {
 }
 
 // The kernels to compare with the scalar ones: those the decoder uses here and
-// the AVX2 ones when this CPU runs them (the same, on such a CPU).
+// every vectorised set this CPU runs.
 std::vector<const Cdf97Kernels*> fastKernels() {
   std::vector<const Cdf97Kernels*> list = {&cdf97Kernels()};
-  if (const Cdf97Kernels* avx2 = cdf97Avx2Kernels(); avx2 && avx2 != list[0]) list.push_back(avx2);
+  for (const Cdf97Kernels* k : {cdf97Avx2Kernels(), cdf97Avx512Kernels()})
+    if (k && k != list[0]) list.push_back(k);
   return list;
 }
 
@@ -54,14 +56,22 @@ TEST(Cdf97Kernels, ScaleAndSaturateMatchTheScalarKernels) {
   for (const Cdf97Kernels* k : fastKernels()) {
     for (size_t n = 0; n < 40; ++n) {
       for (size_t offset = 0; offset < 3; ++offset) {  // unaligned starts too
-        const std::vector<int64_t> x = randomValues(rng, n + offset, true);
-        std::vector<int64_t> want(n + offset, 7), got(n + offset, 7);
-        ref.scale(x.data() + offset, want.data() + offset, n);
-        k->scale(x.data() + offset, got.data() + offset, n);
-        ASSERT_EQ(got, want) << k->name << " scale n=" << n;
-        ref.saturate(x.data() + offset, want.data() + offset, n);
-        k->saturate(x.data() + offset, got.data() + offset, n);
-        ASSERT_EQ(got, want) << k->name << " saturate n=" << n;
+        // Random values; all 0; all 0 but one (the kernels tell whether an output is not 0).
+        std::vector<int64_t> x = randomValues(rng, n + offset, true);
+        for (int kind = 0; kind < 3; ++kind) {
+          if (kind > 0) std::fill(x.begin(), x.end(), 0);
+          if (kind == 2 && n > 0) x[offset + rng() % n] = (rng() & 1) ? 1 : -1;
+          std::vector<int64_t> want(n + offset, 7), got(n + offset, 7);
+          bool want_any = ref.scale(x.data() + offset, want.data() + offset, n);
+          bool got_any = k->scale(x.data() + offset, got.data() + offset, n);
+          ASSERT_EQ(got, want) << k->name << " scale n=" << n;
+          ASSERT_EQ(got_any, want_any) << k->name << " scale n=" << n;
+          ASSERT_EQ(want_any, kind != 1 && n > 0);
+          want_any = ref.saturate(x.data() + offset, want.data() + offset, n);
+          got_any = k->saturate(x.data() + offset, got.data() + offset, n);
+          ASSERT_EQ(got, want) << k->name << " saturate n=" << n;
+          ASSERT_EQ(got_any, want_any) << k->name << " saturate n=" << n;
+        }
       }
     }
     // The ends of the int64 range and of the saturation bound, each in every lane.
@@ -187,11 +197,15 @@ TEST(Cdf97Kernels, SynthesisMatchesSpecWithEveryKernelSet) {
   std::mt19937_64 rng(2024);
   for (const GridPlan& plan : plans) {
     // Coefficient-like values (mostly small), with some at and beyond the bound.
+    // About half the values 0, in runs, so that some lines and batches are all 0.
     std::vector<int64_t> input(plan.paddedCount());
+    bool zeros = false;
     for (int64_t& v : input) {
+      if (rng() % 64 == 0) zeros = !zeros;
       const uint64_t r = rng() % 16;
-      v = r < 12 ? static_cast<int64_t>(rng() % (uint64_t{1} << 28)) - (int64_t{1} << 27)
-                 : randomValue(rng, true);
+      v = zeros ? 0
+          : r < 12 ? static_cast<int64_t>(rng() % (uint64_t{1} << 28)) - (int64_t{1} << 27)
+                   : randomValue(rng, true);
     }
     for (int stop = 0; stop <= 2; ++stop) {
       std::vector<int64_t> want = input;
@@ -213,7 +227,8 @@ TEST(Cdf97Kernels, SynthesisMatchesSpecWithEveryKernelSet) {
 TEST(Cdf97Kernels, AvailableImplementations) {
   // Documents what this machine runs; the comparisons above cover it.
   const Cdf97Kernels& best = cdf97Kernels();
-  if (cdf97Avx2Kernels()) EXPECT_STREQ(best.name, "avx2");
+  if (cdf97Avx512Kernels()) EXPECT_STREQ(best.name, "avx512");
+  else if (cdf97Avx2Kernels()) EXPECT_STREQ(best.name, "avx2");
   else EXPECT_STREQ(best.name, "scalar");
   RecordProperty("cdf97_kernels", best.name);
 }

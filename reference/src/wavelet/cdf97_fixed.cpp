@@ -21,6 +21,10 @@
 // - The x pass and the y pass of a level go slice by slice (z fixed): a line
 //   along y reads only values of its slice, just written by the x pass of that
 //   slice and still in cache.
+// - Lines whose values are all 0 stay as they are: a 0 input gives 0 from the
+//   scaling, and every step of 0 values gives sat(0 - ((C * 0 + 2^23) >> 24)) = 0.
+//   When only the high half is all 0 (at low rates, many lines of the finer
+//   levels), the first step changes nothing and is left out.
 // - The arithmetic on the runs is in cdf97_kernels.h: the scalar reference,
 //   or an equivalent vectorised implementation.
 #include <algorithm>
@@ -76,11 +80,15 @@ void mirrorHigh(const Lines& l) {
 // spec: 4.11.3 step(0, D); step(1, G); step(0, B); step(1, A) on lines whose
 // values are read (scaled and saturated). Step(0, C) at x[2i] reads x[2i - 1] =
 // high row i - 1 and x[2i + 1] = high row i; step(1, C) at x[2i + 1] reads
-// x[2i] = low row i and x[2i + 2] = low row i + 1.
-void unliftLines(const Cdf97Kernels& k, const Lines& l) {
+// x[2i] = low row i and x[2i + 2] = low row i + 1. Without `high_nonzero` the
+// caller knows the high rows are all 0, and step(0, D) changes nothing:
+// sat(x - ((D * 0 + 2^23) >> 24)) = sat(x) = x.
+void unliftLines(const Cdf97Kernels& k, const Lines& l, bool high_nonzero) {
   const size_t w = l.width;
-  mirrorHigh(l);
-  k.lift(l.low, l.high - w, l.high, l.h * w, kCdf97Delta);
+  if (high_nonzero) {
+    mirrorHigh(l);
+    k.lift(l.low, l.high - w, l.high, l.h * w, kCdf97Delta);
+  }
   mirrorLow(l);
   k.lift(l.high, l.low, l.low + w, l.g * w, kCdf97Gamma);
   mirrorHigh(l);
@@ -92,9 +100,10 @@ void unliftLines(const Cdf97Kernels& k, const Lines& l) {
 // One line along x of f values at `line` (contiguous), in place.
 void synthesizeAlong(const Cdf97Kernels& k, int64_t* line, size_t f, Scratch* s) {
   const Lines l = s->lines(f, 1);
-  k.scale(line, l.low, l.h);             // value i of the line, i < h
-  k.saturate(line + l.h, l.high, l.g);   // value h + i of the line
-  unliftLines(k, l);
+  const bool low = k.scale(line, l.low, l.h);             // value i of the line, i < h
+  const bool high = k.saturate(line + l.h, l.high, l.g);  // value h + i of the line
+  if (!low && !high) return;  // all 0 in, all 0 out
+  unliftLines(k, l, high);
   k.interleave(l.low, l.high, line, l.h, l.g);
 }
 
@@ -103,9 +112,12 @@ void synthesizeAlong(const Cdf97Kernels& k, int64_t* line, size_t f, Scratch* s)
 void synthesizeAcross(const Cdf97Kernels& k, int64_t* base, size_t stride, size_t f,
                       size_t width, Scratch* s) {
   const Lines l = s->lines(f, width);
-  for (size_t i = 0; i < l.h; ++i) k.scale(base + i * stride, l.low + i * width, width);
-  for (size_t i = 0; i < l.g; ++i) k.saturate(base + (l.h + i) * stride, l.high + i * width, width);
-  unliftLines(k, l);
+  bool low = false, high = false;
+  for (size_t i = 0; i < l.h; ++i) low |= k.scale(base + i * stride, l.low + i * width, width);
+  for (size_t i = 0; i < l.g; ++i)
+    high |= k.saturate(base + (l.h + i) * stride, l.high + i * width, width);
+  if (!low && !high) return;  // all 0 in, all 0 out
+  unliftLines(k, l, high);
   const size_t bytes = width * sizeof(int64_t);
   for (size_t i = 0; i < l.h; ++i) std::memcpy(base + 2 * i * stride, l.low + i * width, bytes);
   for (size_t i = 0; i < l.g; ++i) std::memcpy(base + (2 * i + 1) * stride, l.high + i * width, bytes);

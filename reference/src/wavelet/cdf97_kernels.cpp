@@ -21,13 +21,17 @@ static_assert((int64_t{-3} >> 1) == -2, "the 9/7 synthesis needs an arithmetic r
 int64_t scaled(int64_t c, int64_t v) { return (c * v + kHalf) >> kCdf97FracBits; }
 
 // 4.11.3: x[2i] = sat((sat(value i of the line) * K + 2^23) >> 24).
-void scaleScalar(const int64_t* x, int64_t* y, size_t n) {
-  for (size_t j = 0; j < n; ++j) y[j] = sat(scaled(kCdf97K, sat(x[j])));
+bool scaleScalar(const int64_t* x, int64_t* y, size_t n) {
+  int64_t any = 0;
+  for (size_t j = 0; j < n; ++j) any |= y[j] = sat(scaled(kCdf97K, sat(x[j])));
+  return any != 0;
 }
 
 // 4.11.3: x[2i + 1] = sat(value h + i of the line).
-void saturateScalar(const int64_t* x, int64_t* y, size_t n) {
-  for (size_t j = 0; j < n; ++j) y[j] = sat(x[j]);
+bool saturateScalar(const int64_t* x, int64_t* y, size_t n) {
+  int64_t any = 0;
+  for (size_t j = 0; j < n; ++j) any |= y[j] = sat(x[j]);
+  return any != 0;
 }
 
 // 4.11.3 step(p, C): x[i] = sat(x[i] - ((C * (x[l] + x[r]) + 2^23) >> 24)).
@@ -54,6 +58,7 @@ const Cdf97Kernels& cdf97ScalarKernels() {
 
 const Cdf97Kernels& cdf97Kernels() {
   static const Cdf97Kernels& best = [] () -> const Cdf97Kernels& {
+    if (const Cdf97Kernels* avx512 = cdf97Avx512Kernels()) return *avx512;
     if (const Cdf97Kernels* avx2 = cdf97Avx2Kernels()) return *avx2;
     return cdf97ScalarKernels();
   }();

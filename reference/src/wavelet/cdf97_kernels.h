@@ -6,7 +6,8 @@
 //
 // There is one portable implementation, cdf97ScalarKernels(), written as the
 // formulas of 4.11.3 and the reference for every other one, and on x86-64 one
-// for CPUs with AVX2 (cdf97_kernels_avx2.cpp), chosen at run time. Every
+// for CPUs with AVX2 (cdf97_kernels_avx2.cpp) and one for CPUs with AVX-512 F
+// and DQ (cdf97_kernels_avx512.cpp), the fastest chosen at run time. Every
 // implementation gives the same integers as the scalar one for every input
 // within the preconditions below (a unit test compares them on random values
 // up to and beyond the saturation bound); the choice changes speed only.
@@ -21,10 +22,12 @@ namespace mrsv::wavelet {
 
 struct Cdf97Kernels {
   // y[j] = sat((K * sat(x[j]) + 2^23) >> 24) for j < n: a low-pass value as
-  // read and scaled (4.11.3, first line of the loop). Any int64 x[j].
-  void (*scale)(const int64_t* x, int64_t* y, size_t n);
+  // read and scaled (4.11.3, first line of the loop). Any int64 x[j]. Returns
+  // whether some y[j] is not 0 (exactly when some x[j] is not 0).
+  bool (*scale)(const int64_t* x, int64_t* y, size_t n);
   // y[j] = sat(x[j]) for j < n: a high-pass value as read. Any int64 x[j].
-  void (*saturate)(const int64_t* x, int64_t* y, size_t n);
+  // Returns whether some y[j] is not 0.
+  bool (*saturate)(const int64_t* x, int64_t* y, size_t n);
   // y[j] = sat(y[j] - ((c * (a[j] + b[j]) + 2^23) >> 24)) for j < n: step(p, C)
   // at the values y of one parity, a[j] and b[j] their two neighbours. Needs
   // |y[j]|, |a[j]|, |b[j]| <= kValueLimit and |c| < 2^26, so that |c * (a[j] +
@@ -43,6 +46,8 @@ const Cdf97Kernels& cdf97ScalarKernels();
 // The AVX2 implementation, or null when this build has none (not x86-64, or a
 // compiler without target attributes) or this CPU lacks AVX2.
 const Cdf97Kernels* cdf97Avx2Kernels();
+// The AVX-512 implementation, likewise (needs AVX-512 F and DQ).
+const Cdf97Kernels* cdf97Avx512Kernels();
 // The fastest implementation this CPU runs (chosen once).
 const Cdf97Kernels& cdf97Kernels();
 

@@ -67,17 +67,29 @@ MRSV_TARGET_AVX2 inline __m256i scaled(__m256i c, __m256i s) {
   return _mm256_sub_epi64(_mm256_xor_si256(_mm256_srli_epi64(t, kCdf97FracBits), sign), sign);
 }
 
-MRSV_TARGET_AVX2 void scaleAvx2(const int64_t* x, int64_t* y, size_t n) {
+MRSV_TARGET_AVX2 bool scaleAvx2(const int64_t* x, int64_t* y, size_t n) {
   const __m256i k = _mm256_set1_epi64x(kCdf97K);
+  __m256i any = _mm256_setzero_si256();
   size_t j = 0;
-  for (; j + 4 <= n; j += 4) store(y + j, sat(scaled(k, sat(load(x + j)))));
-  cdf97ScalarKernels().scale(x + j, y + j, n - j);
+  for (; j + 4 <= n; j += 4) {
+    const __m256i v = sat(scaled(k, sat(load(x + j))));
+    any = _mm256_or_si256(any, v);
+    store(y + j, v);
+  }
+  const bool tail = cdf97ScalarKernels().scale(x + j, y + j, n - j);
+  return tail || !_mm256_testz_si256(any, any);
 }
 
-MRSV_TARGET_AVX2 void saturateAvx2(const int64_t* x, int64_t* y, size_t n) {
+MRSV_TARGET_AVX2 bool saturateAvx2(const int64_t* x, int64_t* y, size_t n) {
+  __m256i any = _mm256_setzero_si256();
   size_t j = 0;
-  for (; j + 4 <= n; j += 4) store(y + j, sat(load(x + j)));
-  cdf97ScalarKernels().saturate(x + j, y + j, n - j);
+  for (; j + 4 <= n; j += 4) {
+    const __m256i v = sat(load(x + j));
+    any = _mm256_or_si256(any, v);
+    store(y + j, v);
+  }
+  const bool tail = cdf97ScalarKernels().saturate(x + j, y + j, n - j);
+  return tail || !_mm256_testz_si256(any, any);
 }
 
 MRSV_TARGET_AVX2 void liftAvx2(int64_t* y, const int64_t* a, const int64_t* b, size_t n,

@@ -9,7 +9,8 @@ set(MRSV_WAVELET_DECODE_SOURCES
   reference/src/wavelet/synthesis_fixed.cpp
   reference/src/wavelet/cdf97_fixed.cpp
   reference/src/wavelet/cdf97_kernels.cpp
-  reference/src/wavelet/cdf97_kernels_avx2.cpp)
+  reference/src/wavelet/cdf97_kernels_avx2.cpp
+  reference/src/wavelet/cdf97_kernels_avx512.cpp)
 set(MRSV_WAVELET_ENCODE_SOURCES
   reference/src/wavelet/transform_float.cpp
   reference/src/wavelet/cdf97_float.cpp)
