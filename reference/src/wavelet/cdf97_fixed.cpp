@@ -109,18 +109,42 @@ void synthesizeAlong(const Cdf97Kernels& k, int64_t* line, size_t f, Scratch* s)
 
 // `width` neighbouring lines along an axis with stride `stride`, f values each:
 // value i of line w at base[i * stride + w], in place.
+//
+// The lines are read into scratch first (row 2i of the result overwrites input
+// row 2i, which is still to be read for i > 0). The four steps then run as one
+// sweep over the rows instead of four: at stage t, step(0, D) at low row t,
+// step(1, G) at high row t - 1, step(0, B) at low row t - 1, step(1, A) at high
+// row t - 2, and rows 2(t - 2) and 2(t - 2) + 1 of the result are final and
+// written. Each update finds its neighbours as that step needs them (step(0, D)
+// at low row t reads high rows t - 1 and t before step(1, G) changes them,
+// ...), so the values are those of the four separate steps; only the rows a
+// stage touches are in use, and they stay in the first-level cache.
 void synthesizeAcross(const Cdf97Kernels& k, int64_t* base, size_t stride, size_t f,
                       size_t width, Scratch* s) {
   const Lines l = s->lines(f, width);
-  bool low = false, high = false;
-  for (size_t i = 0; i < l.h; ++i) low |= k.scale(base + i * stride, l.low + i * width, width);
-  for (size_t i = 0; i < l.g; ++i)
-    high |= k.saturate(base + (l.h + i) * stride, l.high + i * width, width);
-  if (!low && !high) return;  // all 0 in, all 0 out
-  unliftLines(k, l, high);
-  const size_t bytes = width * sizeof(int64_t);
-  for (size_t i = 0; i < l.h; ++i) std::memcpy(base + 2 * i * stride, l.low + i * width, bytes);
-  for (size_t i = 0; i < l.g; ++i) std::memcpy(base + (2 * i + 1) * stride, l.high + i * width, bytes);
+  const size_t h = l.h, g = l.g, w = width;
+  bool any = false;
+  for (size_t i = 0; i < h; ++i) any |= k.scale(base + i * stride, l.low + i * w, w);
+  for (size_t i = 0; i < g; ++i) any |= k.saturate(base + (h + i) * stride, l.high + i * w, w);
+  if (!any) return;  // all 0 in, all 0 out
+  // Row i of each half, the mirrored ends of 4.11.3 included: x[-1] = x[1]
+  // (high row -1 is high row 0), x[f] = x[f - 2] (low row h is low row h - 1
+  // when f is even, high row g is high row g - 1 when f is odd).
+  auto low = [&](size_t i) { return l.low + (i < h ? i : h - 1) * w; };
+  auto high = [&](ptrdiff_t i) {
+    return l.high + (i < 0 ? 0 : static_cast<size_t>(i) < g ? static_cast<size_t>(i) : g - 1) * w;
+  };
+  const size_t bytes = w * sizeof(int64_t);
+  for (size_t t = 0; t < h + 2; ++t) {
+    const ptrdiff_t i = static_cast<ptrdiff_t>(t);
+    if (t < h) k.lift(l.low + t * w, high(i - 1), high(i), w, kCdf97Delta);
+    if (t >= 1 && t - 1 < g) k.lift(l.high + (t - 1) * w, low(t - 1), low(t), w, kCdf97Gamma);
+    if (t >= 1 && t - 1 < h) k.lift(l.low + (t - 1) * w, high(i - 2), high(i - 1), w, kCdf97Beta);
+    if (t >= 2 && t - 2 < g) k.lift(l.high + (t - 2) * w, low(t - 2), low(t - 1), w, kCdf97Alpha);
+    if (t >= 2 && t - 2 < h) std::memcpy(base + 2 * (t - 2) * stride, l.low + (t - 2) * w, bytes);
+    if (t >= 2 && t - 2 < g)
+      std::memcpy(base + (2 * (t - 2) + 1) * stride, l.high + (t - 2) * w, bytes);
+  }
 }
 
 // Lines along y or z of f values are batched about kBatchValues / f at a time
