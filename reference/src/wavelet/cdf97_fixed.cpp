@@ -12,19 +12,21 @@
 //   the other at the same and the neighbouring index, which is one run of
 //   neighbouring values: lowRows[i] -= C * (highRows[i - 1] + highRows[i]) for
 //   the even steps, highRows[i] -= C * (lowRows[i] + lowRows[i + 1]) for the
-//   odd ones. The mirrored ends of 4.11.3 are extra rows copied before each
-//   step. The line goes back to natural order when it is written.
-// - Lines along x are contiguous: one line at a time, the runs along the line.
-//   Lines along y and z are taken `width` neighbouring lines at a time, row i
-//   of the batch holding value i of each line side by side, so the runs go
-//   across the lines and each row is read from the grid as one block.
+//   odd ones. The line goes back to natural order when it is written.
+// - Lines along x are contiguous: one line at a time, the runs along the line,
+//   step after step, the mirrored ends of 4.11.3 copied to extra values before
+//   each step. Lines along y and z are taken `width` neighbouring lines at a
+//   time, row i of the batch holding value i of each line side by side, so the
+//   runs go across the lines and each row is read from the grid as one block;
+//   the four steps go as one sweep over the rows (synthesizeAcross), the
+//   mirrored ends by the choice of row.
 // - The x pass and the y pass of a level go slice by slice (z fixed): a line
 //   along y reads only values of its slice, just written by the x pass of that
 //   slice and still in cache.
 // - Lines whose values are all 0 stay as they are: a 0 input gives 0 from the
 //   scaling, and every step of 0 values gives sat(0 - ((C * 0 + 2^23) >> 24)) = 0.
-//   When only the high half is all 0 (at low rates, many lines of the finer
-//   levels), the first step changes nothing and is left out.
+//   When only the high half of a line along x is all 0 (at low rates, many
+//   lines of the finer levels), the first step changes nothing and is left out.
 // - The arithmetic on the runs is in cdf97_kernels.h: the scalar reference,
 //   or an equivalent vectorised implementation.
 #include <algorithm>
