@@ -224,6 +224,64 @@ TEST(Cdf97Kernels, SynthesisMatchesSpecWithEveryKernelSet) {
   }
 }
 
+TEST(Cdf97Kernels, LastPassRowsAreTheSynthesis) {
+  // The rows handed out by the last pass are the values the synthesis would
+  // have written, each position once; when the last pass is along x nothing
+  // is handed out and the array holds the result.
+  const std::vector<GridPlan> plans = {
+      plan97(1, 1201, 1, 1, 7, 0, 0),  // last pass along x
+      plan97(2, 317, 61, 1, 5, 4, 0),  // along y
+      plan97(2, 37, 23, 1, 3, 0, 0),   // along x (y not transformed)
+      plan97(3, 9, 10, 11, 2, 3, 1),   // along z
+      plan97(3, 70, 3, 41, 1, 1, 0),   // along y (z not transformed)
+      plan97(3, 300, 20, 7, 6, 2, 2)}; // along z, boxes wider than a batch
+  std::mt19937_64 rng(58);
+  for (const GridPlan& plan : plans) {
+    std::vector<int64_t> input(plan.paddedCount());
+    for (int64_t& v : input) v = static_cast<int64_t>(rng() % (uint64_t{1} << 30)) - (int64_t{1} << 29);
+    for (int stop = 0; stop <= 1; ++stop) {
+      std::vector<int64_t> want = input;
+      synthesizeAsWritten(plan, want.data(), stop);
+      struct Collected {
+        std::vector<int64_t> values;
+        std::vector<int> seen;
+        size_t px, pxy;
+      } got{std::vector<int64_t>(input.size()), std::vector<int>(input.size()),
+            plan.axis[0].size(0), size_t{plan.axis[0].size(0)} * plan.axis[1].size(0)};
+      const SynthesisRows rows{
+          [](void* c, size_t x, size_t y, size_t z, const int64_t* values, size_t n) {
+            Collected& got = *static_cast<Collected*>(c);
+            for (size_t i = 0; i < n; ++i) {
+              const size_t at = x + i + y * got.px + z * got.pxy;
+              got.values[at] = values[i];
+              ++got.seen[at];
+            }
+          },
+          &got};
+      for (const Cdf97Kernels* k : {&cdf97ScalarKernels(), &cdf97Kernels()}) {
+        std::vector<int64_t> data = input;
+        std::fill(got.seen.begin(), got.seen.end(), 0);
+        const bool handed_out = synthesizeFixedCdf97(plan, data.data(), stop, rows, *k);
+        const bool along_x_last = plan.axis[1].levels <= stop && plan.axis[2].levels <= stop;
+        ASSERT_EQ(handed_out, !along_x_last && plan.maxLevels() > stop);
+        size_t box[3];
+        for (int a = 0; a < 3; ++a) box[a] = plan.axis[a].size(std::min(stop, plan.axis[a].levels));
+        for (size_t z = 0; z < box[2]; ++z)
+          for (size_t y = 0; y < box[1]; ++y)
+            for (size_t x = 0; x < box[0]; ++x) {
+              const size_t at = x + y * got.px + z * got.pxy;
+              if (handed_out) {
+                ASSERT_EQ(got.seen[at], 1) << x << "," << y << "," << z;
+                ASSERT_EQ(got.values[at], want[at]) << k->name;
+              } else {
+                ASSERT_EQ(data[at], want[at]) << k->name;
+              }
+            }
+      }
+    }
+  }
+}
+
 TEST(Cdf97Kernels, AvailableImplementations) {
   // Documents what this machine runs; the comparisons above cover it.
   const Cdf97Kernels& best = cdf97Kernels();

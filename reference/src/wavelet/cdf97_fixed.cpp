@@ -110,7 +110,9 @@ void synthesizeAlong(const Cdf97Kernels& k, int64_t* line, size_t f, Scratch* s)
 }
 
 // `width` neighbouring lines along an axis with stride `stride`, f values each:
-// value i of line w at base[i * stride + w], in place.
+// value i of line w at base[i * stride + w], in place; or, with `emit`, row i
+// of the result (value i of each line) goes to emit(i, row) instead (every row
+// once, in some order).
 //
 // The lines are read into scratch first (row 2i of the result overwrites input
 // row 2i, which is still to be read for i > 0). The four steps then run as one
@@ -121,14 +123,18 @@ void synthesizeAlong(const Cdf97Kernels& k, int64_t* line, size_t f, Scratch* s)
 // at low row t reads high rows t - 1 and t before step(1, G) changes them,
 // ...), so the values are those of the four separate steps; only the rows a
 // stage touches are in use, and they stay in the first-level cache.
+template <class Emit>
 void synthesizeAcross(const Cdf97Kernels& k, int64_t* base, size_t stride, size_t f,
-                      size_t width, Scratch* s) {
+                      size_t width, Scratch* s, Emit&& emit) {
   const Lines l = s->lines(f, width);
   const size_t h = l.h, g = l.g, w = width;
   bool any = false;
   for (size_t i = 0; i < h; ++i) any |= k.scale(base + i * stride, l.low + i * w, w);
   for (size_t i = 0; i < g; ++i) any |= k.saturate(base + (h + i) * stride, l.high + i * w, w);
-  if (!any) return;  // all 0 in, all 0 out
+  if (!any) {  // all 0 in, all 0 out
+    for (size_t i = 0; i < f; ++i) emit(i, l.low);  // l.low: all 0
+    return;
+  }
   // Row i of each half, the mirrored ends of 4.11.3 included: x[-1] = x[1]
   // (high row -1 is high row 0), x[f] = x[f - 2] (low row h is low row h - 1
   // when f is even, high row g is high row g - 1 when f is odd).
@@ -136,17 +142,24 @@ void synthesizeAcross(const Cdf97Kernels& k, int64_t* base, size_t stride, size_
   auto high = [&](ptrdiff_t i) {
     return l.high + (i < 0 ? 0 : static_cast<size_t>(i) < g ? static_cast<size_t>(i) : g - 1) * w;
   };
-  const size_t bytes = w * sizeof(int64_t);
   for (size_t t = 0; t < h + 2; ++t) {
     const ptrdiff_t i = static_cast<ptrdiff_t>(t);
     if (t < h) k.lift(l.low + t * w, high(i - 1), high(i), w, kCdf97Delta);
     if (t >= 1 && t - 1 < g) k.lift(l.high + (t - 1) * w, low(t - 1), low(t), w, kCdf97Gamma);
     if (t >= 1 && t - 1 < h) k.lift(l.low + (t - 1) * w, high(i - 2), high(i - 1), w, kCdf97Beta);
     if (t >= 2 && t - 2 < g) k.lift(l.high + (t - 2) * w, low(t - 2), low(t - 1), w, kCdf97Alpha);
-    if (t >= 2 && t - 2 < h) std::memcpy(base + 2 * (t - 2) * stride, l.low + (t - 2) * w, bytes);
-    if (t >= 2 && t - 2 < g)
-      std::memcpy(base + (2 * (t - 2) + 1) * stride, l.high + (t - 2) * w, bytes);
+    if (t >= 2 && t - 2 < h) emit(2 * (t - 2), l.low + (t - 2) * w);
+    if (t >= 2 && t - 2 < g) emit(2 * (t - 2) + 1, l.high + (t - 2) * w);
   }
+}
+
+// synthesizeAcross() writing back in place.
+void synthesizeAcross(const Cdf97Kernels& k, int64_t* base, size_t stride, size_t f,
+                      size_t width, Scratch* s) {
+  const size_t bytes = width * sizeof(int64_t);
+  synthesizeAcross(k, base, stride, f, width, s, [&](size_t i, const int64_t* row) {
+    std::memcpy(base + i * stride, row, bytes);
+  });
 }
 
 // Lines along y or z of f values are batched about kBatchValues / f at a time
@@ -161,14 +174,15 @@ size_t batchWidth(size_t f, size_t box_width) {
   return std::min(box_width, std::max<size_t>(16, kBatchValues / f));
 }
 
-}  // namespace
-
-void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
-                          const Cdf97Kernels& kernels) {
-  if (!isValidGridPlan(plan)) return;
+// The walk of 4.11.3; with `rows`, the last pass, when it runs along y or z,
+// hands its rows to it (see cdf97.h). Returns whether it did.
+bool synthesize(const GridPlan& plan, int64_t* data, int stop_level, const Cdf97Kernels& kernels,
+                const SynthesisRows* rows) {
+  if (!isValidGridPlan(plan)) return false;
   if (stop_level < 0) stop_level = 0;
   const size_t px = plan.axis[0].size(0), pxy = px * plan.axis[1].size(0);
   Scratch scratch;
+  bool emitted = false;
   for (int level = plan.maxLevels(); level > stop_level; --level) {
     // spec: 4.11.3 the axes x, y, z in this order over the box of the level.
     size_t box[3];
@@ -177,27 +191,63 @@ void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
       box[a] = plan.axis[a].size(level - 1);
       split[a] = plan.axis[a].levels >= level;
     }
+    // Which pass, if any, goes to `rows`: the last one, if along y or z.
+    const bool last = level == stop_level + 1 && rows != nullptr;
+    const bool rows_y = last && split[1] && !split[2], rows_z = last && split[2];
+    emitted = rows_y || rows_z;
     if (split[0] || split[1]) {
       for (size_t z = 0; z < box[2]; ++z) {
         int64_t* slice = data + z * pxy;
         if (split[0])
           for (size_t y = 0; y < box[1]; ++y) synthesizeAlong(kernels, slice + y * px, box[0], &scratch);
         if (split[1])
-          for (size_t x = 0, bw = batchWidth(box[1], box[0]); x < box[0]; x += bw)
-            synthesizeAcross(kernels, slice + x, px, box[1], std::min(bw, box[0] - x),
-                             &scratch);
+          for (size_t x = 0, bw = batchWidth(box[1], box[0]); x < box[0]; x += bw) {
+            const size_t width = std::min(bw, box[0] - x);
+            if (rows_y)
+              synthesizeAcross(kernels, slice + x, px, box[1], width, &scratch,
+                               [&](size_t y, const int64_t* row) {
+                                 rows->row(rows->context, x, y, z, row, width);
+                               });
+            else
+              synthesizeAcross(kernels, slice + x, px, box[1], width, &scratch);
+          }
       }
     }
     if (split[2])
       for (size_t y = 0; y < box[1]; ++y)
-        for (size_t x = 0, bw = batchWidth(box[2], box[0]); x < box[0]; x += bw)
-          synthesizeAcross(kernels, data + y * px + x, pxy, box[2],
-                           std::min(bw, box[0] - x), &scratch);
+        for (size_t x = 0, bw = batchWidth(box[2], box[0]); x < box[0]; x += bw) {
+          const size_t width = std::min(bw, box[0] - x);
+          if (rows_z)
+            synthesizeAcross(kernels, data + y * px + x, pxy, box[2], width, &scratch,
+                             [&](size_t z, const int64_t* row) {
+                               rows->row(rows->context, x, y, z, row, width);
+                             });
+          else
+            synthesizeAcross(kernels, data + y * px + x, pxy, box[2], width, &scratch);
+        }
   }
+  return emitted;
+}
+
+}  // namespace
+
+void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          const Cdf97Kernels& kernels) {
+  synthesize(plan, data, stop_level, kernels, nullptr);
 }
 
 void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level) {
-  synthesizeFixedCdf97(plan, data, stop_level, cdf97Kernels());
+  synthesize(plan, data, stop_level, cdf97Kernels(), nullptr);
+}
+
+bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          const SynthesisRows& rows) {
+  return synthesize(plan, data, stop_level, cdf97Kernels(), &rows);
+}
+
+bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          const SynthesisRows& rows, const Cdf97Kernels& kernels) {
+  return synthesize(plan, data, stop_level, kernels, &rows);
 }
 
 }  // namespace mrsv::wavelet

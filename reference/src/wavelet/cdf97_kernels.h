@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "wavelet/axis_plan.h"
+#include "wavelet/cdf97.h"
 
 namespace mrsv::wavelet {
 
@@ -55,5 +56,7 @@ const Cdf97Kernels& cdf97Kernels();
 // cdf97Kernels(): the tests compare the implementations with it.
 void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
                           const Cdf97Kernels& kernels);
+bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          const SynthesisRows& rows, const Cdf97Kernels& kernels);
 
 }  // namespace mrsv::wavelet
