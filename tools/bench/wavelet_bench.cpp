@@ -1,7 +1,10 @@
 // Wavelet transform speed: analyze (encoder, floating point) and synthesizeFixed
-// (decoder, normative integer synthesis) on cubes of order 4, with the encoder's
-// default levels (chooseLevels). Reports the time per sample of the padded array
-// (counter per_sample, in seconds: "29.6ns" reads 29.6 ns per sample).
+// (decoder, normative integer synthesis) on cubes of order 4 (the B-spline) or 5
+// (CDF 9/7; the second argument), with the encoder's default levels
+// (chooseLevels). BM_SynthesizeCdf97Scalar runs the 9/7 synthesis with the
+// portable kernels instead of the fastest this CPU has. Reports the time per
+// sample of the padded array (counter per_sample, in seconds: "29.6ns" reads
+// 29.6 ns per sample).
 //
 //   build/wavelet_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
@@ -11,6 +14,7 @@
 #include <vector>
 
 #include "wavelet/axis_plan.h"
+#include "wavelet/cdf97_kernels.h"
 #include "wavelet/synthesis_fixed.h"
 #include "wavelet/transform_float.h"
 
@@ -18,12 +22,12 @@ namespace {
 
 using namespace mrsv::wavelet;
 
-GridPlan cube(uint32_t n) {
+GridPlan cube(uint32_t n, int order = 4) {
   const uint32_t sizes[3] = {n, n, n};
-  const int levels = chooseLevels(n, 4, kMaxLevels);
+  const int levels = chooseLevels(n, order, kMaxLevels);
   const int per_axis[3] = {levels, levels, levels};
   GridPlan plan;
-  makeGridPlan(3, sizes, 4, per_axis, &plan);
+  makeGridPlan(3, sizes, order, per_axis, &plan);
   return plan;
 }
 
@@ -57,8 +61,9 @@ void BM_Analyze(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_SynthesizeFixed(benchmark::State& state) {
-  const GridPlan plan = cube(static_cast<uint32_t>(state.range(0)));
+template <bool kScalarCdf97>
+void synthesizeBench(benchmark::State& state) {
+  const GridPlan plan = cube(static_cast<uint32_t>(state.range(0)), static_cast<int>(state.range(1)));
   std::vector<double> coef = field(plan);
   analyze(plan, coef.data());
   std::vector<int64_t> input(coef.size());
@@ -69,7 +74,8 @@ void BM_SynthesizeFixed(benchmark::State& state) {
     state.PauseTiming();
     data = input;
     state.ResumeTiming();
-    synthesizeFixed(plan, data.data());
+    if (kScalarCdf97) synthesizeFixedCdf97(plan, data.data(), 0, cdf97ScalarKernels());
+    else synthesizeFixed(plan, data.data());
     benchmark::DoNotOptimize(data.data());
   }
   state.counters["levels"] = plan.maxLevels();
@@ -79,7 +85,13 @@ void BM_SynthesizeFixed(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Analyze)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SynthesizeFixed)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+void BM_SynthesizeFixed(benchmark::State& state) { synthesizeBench<false>(state); }
+void BM_SynthesizeCdf97Scalar(benchmark::State& state) { synthesizeBench<true>(state); }
+
+BENCHMARK(BM_SynthesizeFixed)
+    ->ArgsProduct({{64, 128, 256}, {4, kOrderCdf97}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SynthesizeCdf97Scalar)->Args({256, kOrderCdf97})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -1,5 +1,6 @@
 // mrsv decode: an MRSV file (or a prefix of one) to raw samples.
 #include <cstdio>
+#include <utility>
 
 #include "cli.h"
 #include "commands.h"
@@ -100,8 +101,8 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    if (!encodeGridOutput(out, grid.header, grid.output_size, grid.samples, endian == Endian::kBig,
-                          &output, &error))
+    if (!encodeGridOutput(out, grid.header, grid.output_size, std::move(grid.samples),
+                          endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);
   }
   if (!args.flag("quiet") && !args.flag("canonical") &&

@@ -34,9 +34,11 @@ struct GridInput {
 bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in, std::string* error);
 
 // The bytes of a grid file for `path`'s format: `size` gives the sizes of
-// `samples` (smaller than the header's at reduced resolution).
+// `samples` (smaller than the header's at reduced resolution). Taken by value:
+// a caller done with its samples moves them in, and a raw file then is them,
+// without a copy.
 bool encodeGridOutput(const std::string& path, const GridHeader& header, const uint32_t size[3],
-                      const std::vector<uint8_t>& samples, bool big_endian,
+                      std::vector<uint8_t> samples, bool big_endian,
                       std::vector<uint8_t>* out, std::string* error);
 
 }  // namespace mrsv

@@ -12,11 +12,14 @@
 #include "bitstream/range_coder_adapter.h"
 #include "bitstream/range_decoder.h"
 #include "common/byte_reader.h"
+#include "common/large_array.h"
 #include "grid/array_decoding.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
+#include "grid/sample_runs.h"
 #include "grid/weighted_array_coding.h"
 #include "wavelet/axis_plan.h"
+#include "wavelet/cdf97.h"
 #include "wavelet/synthesis_fixed.h"
 
 namespace mrsv {
@@ -99,7 +102,7 @@ struct WaveletState {
   // The padded array in the Mallat layout; null until a band has coded data.
   // Not zeroed when allocated: each band's box is written when the band is read
   // (step 0: zeros) and the boxes of bands not read are zeroed before synthesis.
-  std::unique_ptr<int64_t[]> coefficients;
+  LargeArray<int64_t> coefficients;
   std::vector<uint8_t> band_written;  // per band of the plan
   std::vector<int64_t> band_values;   // scratch for bands not decoded in place
   std::vector<int64_t> band_symbols;  // scratch for predicted bands
@@ -184,7 +187,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   if (!s->coefficients) {
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, chunk); !e.ok()) return e;
-    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    s->coefficients = makeLargeArray<int64_t>(padded);
     if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
   }
   const wavelet::Band& band = s->bands[index];
@@ -302,44 +305,87 @@ void writeSample(const GridHeader& g, const WaveletHeader& w, int64_t value, uin
 // is grid position k, so the mask and the residual are read at k. Row by row,
 // with the common case (no mask, no residual) a loop of its own.
 template <class T>
-void integerSamples(const WaveletState& s, uint8_t* out) {
-  const GridHeader& g = *s.grid;
-  const int w = s.header.frac_bits;
-  const int64_t offset = static_cast<int64_t>(s.header.value_offset);
-  constexpr int64_t lo = std::numeric_limits<T>::min(), hi = std::numeric_limits<T>::max();
-  auto clamp = [](int64_t v) { return v < lo ? lo : v > hi ? hi : v; };
-  auto store = [](int64_t v, uint8_t* dst) { storeLittleEndian(static_cast<T>(v), dst); };
-  const uint8_t* mask = s.mask.empty() ? nullptr : s.mask.data();
-  const int64_t* residual = s.residual.empty() ? nullptr : s.residual.data();
-  const int64_t residual_step = s.residual_step;
+struct IntegerSamples {
+  const int64_t* residual;
+  const uint8_t* mask;
+  int64_t offset, residual_step;
+  int w;
+  uint32_t nx, ny;
   uint8_t nodata[8];
-  std::memcpy(nodata, &g.nodata_bits, 8);
-  const uint64_t px = s.plan.axis[0].size(0), pxy = px * s.plan.axis[1].size(0);
-  // Sizes and pointers in locals: the byte stores below could alias anything else.
-  const uint32_t nx = g.size_x, ny = g.size_y, nz = g.size_z;
-  const int64_t* coefficients = s.coefficients.get();
-  size_t k = 0;
-  for (uint32_t z = 0; z < nz; ++z)
-    for (uint32_t y = 0; y < ny; ++y, k += nx) {
-      const int64_t* src = coefficients + y * px + z * pxy;
-      uint8_t* dst = out + k * sizeof(T);
-      if (!mask && !residual) {
-        for (uint32_t x = 0; x < nx; ++x)
-          store(clamp(roundShift(src[x], w) + offset), dst + x * sizeof(T));
+  uint8_t* out;
+
+  IntegerSamples(const WaveletState& s, uint8_t* samples) {
+    const GridHeader& g = *s.grid;
+    mask = s.mask.empty() ? nullptr : s.mask.data();
+    residual = s.residual.empty() ? nullptr : s.residual.data();
+    residual_step = s.residual_step;
+    offset = static_cast<int64_t>(s.header.value_offset);
+    w = s.header.frac_bits;
+    nx = g.size_x;
+    ny = g.size_y;
+    std::memcpy(nodata, &g.nodata_bits, 8);
+    out = samples;
+  }
+
+  // The samples of grid positions (x, y, z) .. (x + n - 1, y, z) from their
+  // synthesised values src[0 .. n).
+  void row(const int64_t* src, size_t x, size_t y, size_t z, size_t n) const {
+    constexpr int64_t lo = std::numeric_limits<T>::min(), hi = std::numeric_limits<T>::max();
+    auto clamp = [](int64_t v) { return v < lo ? lo : v > hi ? hi : v; };
+    auto store = [](int64_t v, uint8_t* dst) { storeLittleEndian(static_cast<T>(v), dst); };
+    // Sizes and pointers in locals: the byte stores below could alias anything else.
+    const int shift = w;
+    const int64_t add = offset, rstep = residual_step;
+    const size_t k = x + (y + z * size_t{ny}) * nx;
+    const uint8_t* const m = mask ? mask + k : nullptr;
+    const int64_t* const r = residual ? residual + k : nullptr;
+    uint8_t* const dst = out + k * sizeof(T);
+    if (!m && !r) return integerSampleRun<T>(src, dst, n, shift, add);
+    uint8_t fill[sizeof(T)];
+    std::memcpy(fill, nodata, sizeof(T));
+    for (size_t i = 0; i < n; ++i) {
+      if (m && m[i]) {
+        std::memcpy(dst + i * sizeof(T), fill, sizeof(T));
         continue;
       }
-      for (uint32_t x = 0; x < nx; ++x) {
-        if (mask && mask[k + x]) {
-          std::memcpy(dst + x * sizeof(T), nodata, sizeof(T));
-          continue;
-        }
-        // Clamped before and after the residual, so that an encoder can compute
-        // the residual from the decoded samples alone.
-        int64_t v = clamp(roundShift(src[x], w) + offset);
-        if (residual) v = clamp(v + residual[k + x] * residual_step);
-        store(v, dst + x * sizeof(T));
-      }
+      // Clamped before and after the residual, so that an encoder can compute
+      // the residual from the decoded samples alone.
+      int64_t v = clamp(roundShift(src[i], shift) + add);
+      if (r) v = clamp(v + r[i] * rstep);
+      store(v, dst + i * sizeof(T));
     }
+  }
+
+  // The whole grid from the synthesised array.
+  void all(const WaveletState& s) const {
+    const uint64_t px = s.plan.axis[0].size(0), pxy = px * s.plan.axis[1].size(0);
+    const int64_t* coefficients = s.coefficients.get();
+    for (uint32_t z = 0; z < s.grid->size_z; ++z)
+      for (uint32_t y = 0; y < ny; ++y) row(coefficients + y * px + z * pxy, 0, y, z, nx);
+  }
+
+  // For wavelet::SynthesisRows: a finished row of the synthesis. The 9/7 plan
+  // has no padding (4.11.1), so every row lies in the grid.
+  static void fromSynthesis(void* self, size_t x, size_t y, size_t z, const int64_t* values,
+                            size_t n) {
+    static_cast<const IntegerSamples*>(self)->row(values, x, y, z, n);
+  }
+};
+
+// spec: 5.8.1 and 5.8.2 at full resolution for integer samples of type T. The
+// 9/7 synthesis hands the rows of its last pass straight to the sample
+// mapping when it can (instead of writing them to the padded array and
+// reading them back): the same values, one trip through memory fewer.
+template <class T>
+void synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
+  IntegerSamples<T> mapping(*s, samples);
+  if (wavelet::isCdf97(s->plan.axis[0].order)) {
+    const wavelet::SynthesisRows rows{&IntegerSamples<T>::fromSynthesis, &mapping};
+    if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows)) return;
+  } else {
+    wavelet::synthesizeFixed(s->plan, s->coefficients.get(), 0);
+  }
+  mapping.all(*s);
 }
 
 // spec: 5.8 synthesis and output mapping.
@@ -351,7 +397,7 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   if (!s->coefficients) {  // every band so far had step 0
     uint64_t padded = s->plan.paddedCount();
     if (Error e = checkMemory(padded * 16, options, last); !e.ok()) return e;
-    s->coefficients.reset(new (std::nothrow) int64_t[padded]);
+    s->coefficients = makeLargeArray<int64_t>(padded);
     if (!s->coefficients) return checkMemory(UINT64_MAX, options, last);
   }
   // The bands with step 0 and those not (yet) in the stream are zero.
@@ -366,7 +412,6 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
         std::fill(row, row + band.size[0], 0);
       }
   }
-  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
 
   // Output box: the low-pass block of level `stop`, cut to what covers the grid.
   uint32_t size[3];
@@ -396,13 +441,14 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   if (full) {
     uint8_t* samples = out->samples.data();
     switch (g.sample_type) {
-      case SampleType::kUint8: integerSamples<uint8_t>(*s, samples); return {};
-      case SampleType::kInt16: integerSamples<int16_t>(*s, samples); return {};
-      case SampleType::kUint16: integerSamples<uint16_t>(*s, samples); return {};
-      case SampleType::kInt32: integerSamples<int32_t>(*s, samples); return {};
+      case SampleType::kUint8: synthesizeIntegerSamples<uint8_t>(s, samples); return {};
+      case SampleType::kInt16: synthesizeIntegerSamples<int16_t>(s, samples); return {};
+      case SampleType::kUint16: synthesizeIntegerSamples<uint16_t>(s, samples); return {};
+      case SampleType::kInt32: synthesizeIntegerSamples<int32_t>(s, samples); return {};
       default: break;
     }
   }
+  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
   // Floating-point samples, and reduced resolution: one sample at a time.
   const int w = s->header.frac_bits;
   const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;

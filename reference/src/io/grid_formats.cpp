@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 #include "mrsv/file_io.h"
 #include "mrsv/raw_grid.h"
@@ -256,9 +257,9 @@ bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in,
 }
 
 bool encodeGridOutput(const std::string& path, const GridHeader& header, const uint32_t size[3],
-                      const std::vector<uint8_t>& samples, bool big_endian,
+                      std::vector<uint8_t> samples, bool big_endian,
                       std::vector<uint8_t>* out, std::string* error) {
-  std::vector<uint8_t> body = samples;
+  std::vector<uint8_t>& body = samples;
   GridFormat format = gridFormatOf(path);
   const size_t bytes = sampleSize(header.sample_type);
   if (format == GridFormat::kPgm) {
@@ -281,9 +282,10 @@ bool encodeGridOutput(const std::string& path, const GridHeader& header, const u
   } else if (format == GridFormat::kHgt) {
     *error = path + ": writing .hgt is not supported; write .raw, .nrrd or .pgm";
     return false;
-  } else {
-    out->clear();
+  } else {  // raw: the samples alone
     if (big_endian) swapSampleBytes(&body, bytes);
+    *out = std::move(body);
+    return true;
   }
   out->insert(out->end(), body.begin(), body.end());
   return true;

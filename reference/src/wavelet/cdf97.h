@@ -28,6 +28,24 @@ constexpr int64_t kCdf97K = 20638897;       //  1.230174104914001
 // same contract on `data`, saturation to +-kValueLimit included.
 void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level);
 
+// Where the last pass of a synthesis may put its results instead of `data`:
+// row(context, x, y, z, values, n) receives the values of positions (x, y, z)
+// to (x + n - 1, y, z) of the synthesised array (the low-pass block of
+// `stop_level`, in the coordinates of the padded array), each position once.
+struct SynthesisRows {
+  void (*row)(void* context, size_t x, size_t y, size_t z, const int64_t* values, size_t n);
+  void* context;
+};
+
+// synthesizeFixedCdf97() for a caller that only reads the result once (the
+// decoder's sample mapping, spec 5.8.2): when the last pass runs along y or z,
+// its rows go to `rows` as they are finished, not back to `data`, and the
+// function returns true; `data` is then left with what that pass read. Returns
+// false, with the whole result in `data` and `rows` not called, otherwise
+// (the last pass along x, or nothing to synthesise).
+bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          const SynthesisRows& rows);
+
 // Real-valued analysis and synthesis of one level along one axis (informative,
 // the encoder's; transform_float.cpp walks the levels and axes): the exact
 // inverse pair that 4.11.3 rounds, over a batch of `width` interleaved lines

@@ -7,13 +7,17 @@ set(MRSV_WAVELET_DECODE_SOURCES
   reference/src/wavelet/filter_tables.cpp
   reference/src/wavelet/axis_plan.cpp
   reference/src/wavelet/synthesis_fixed.cpp
-  reference/src/wavelet/cdf97_fixed.cpp)
+  reference/src/wavelet/cdf97_fixed.cpp
+  reference/src/wavelet/cdf97_kernels.cpp
+  reference/src/wavelet/cdf97_kernels_avx2.cpp
+  reference/src/wavelet/cdf97_kernels_avx512.cpp)
 set(MRSV_WAVELET_ENCODE_SOURCES
   reference/src/wavelet/transform_float.cpp
   reference/src/wavelet/cdf97_float.cpp)
 set(MRSV_WAVELET_DECODE_TESTS
   reference/tests/wavelet_plan_test.cpp
-  reference/tests/wavelet_fixed_test.cpp)
+  reference/tests/wavelet_fixed_test.cpp
+  reference/tests/wavelet_cdf97_kernels_test.cpp)
 set(MRSV_WAVELET_ENCODE_TESTS
   reference/tests/wavelet_transform_test.cpp
   reference/tests/wavelet_cdf97_test.cpp)
