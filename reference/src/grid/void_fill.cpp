@@ -87,7 +87,8 @@ void refineVoidFill(const wavelet::GridPlan& plan, const uint32_t size[3],
   // much less.
   constexpr int kIterations = 16;
   const double first = range / 8, last = range / 200;
-  if (!(range > 0)) return;
+  // Without detail bands (the predictive route) there is nothing to threshold.
+  if (!(range > 0) || plan.maxLevels() == 0) return;
   const uint64_t px = plan.axis[0].size(0), pxy = px * plan.axis[1].size(0);
   std::vector<double> sparse;
   for (int it = 0; it < kIterations; ++it) {
