@@ -49,6 +49,7 @@ if cmp -s "$crop" "$work/c.raw"; then ok; else bad "big-endian round trip differ
 
 # Info and check.
 expect 0 "$mrsv" info "$work/a.mrsv"; stdout_has "GHDR"; stdout_has "spacing=30,30"; stdout_has "complete"
+stdout_has "band (coarse to fine) #0, step "; stdout_has "prediction"
 expect 0 "$mrsv" info --json "$work/a.mrsv"
 if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["grid"]["size"]==[128,128,1]' "$work/stdout"; then ok; else bad "info --json is not the expected JSON"; fi
 expect 0 "$mrsv" check "$work/a.mrsv" "$vectors/valid/smallest.mrsv"; stdout_has "ok: grid"

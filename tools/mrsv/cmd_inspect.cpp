@@ -16,7 +16,8 @@ const char kInfoHelp[] =
     "Usage: mrsv info [--json] FILE.mrsv\n"
     "\n"
     "Print the format version, the content header, the chunk table (offset, type,\n"
-    "payload length, CRC-32C) and the metadata of an MRSV file. For a damaged file\n"
+    "payload length, CRC-32C; for a band also its index, its quantiser step in units\n"
+    "of 2^-W and its prediction) and the metadata of an MRSV file. For a damaged file\n"
     "the chunks before the damage are listed, then the error.\n"
     "\n"
     "Options:\n"
@@ -52,6 +53,23 @@ std::string chunkRole(const ChunkType& type) {
   if (type == kChunkSplits) return "vertex-split batch (coarse to fine)";
   if (type == kChunkEnd) return "end";
   return type.critical() ? "unknown critical" : "unknown ancillary (skipped)";
+}
+
+// The role of a chunk in the table, with a band's header (spec 5.3: index,
+// step in units of 2^-W, prediction) read straight from its payload when it is
+// long enough.
+std::string chunkRoleText(const ChunkView& k) {
+  std::string role = chunkRole(k.chunk_type);
+  if (k.chunk_type != kChunkBand || k.chunk_length < 12 || k.payload == nullptr) return role;
+  const uint8_t* p = k.payload;
+  uint64_t step = 0;
+  for (int i = 7; i >= 0; --i) step = (step << 8) | p[4 + i];
+  static const char* const kPrediction[4] = {"", ", neighbour prediction", ", weighted prediction",
+                                             ", prediction 3 (reserved)"};
+  char buf[96];
+  std::snprintf(buf, sizeof buf, " #%u, step %" PRIu64 "%s", unsigned(p[0] | p[1] << 8), step,
+                kPrediction[p[2] & 3]);
+  return role + buf;
 }
 
 std::string nodataText(const GridHeader& h) {
@@ -213,7 +231,7 @@ void printTable(const std::string& file, size_t file_size, const InfoView& view)
   std::printf("chunks:\n  %10s  %-4s  %10s  %-8s  %s\n", "offset", "type", "length", "crc32c", "role");
   for (const ChunkView& k : c.chunks)
     std::printf("  %10" PRIu64 "  %-4s  %10u  %08x  %s\n", k.offset, k.chunk_type.str().c_str(), k.chunk_length,
-                k.chunk_crc, chunkRole(k.chunk_type).c_str());
+                k.chunk_crc, chunkRoleText(k).c_str());
   if (c.complete)
     std::printf("  %10" PRIu64 "  %-4s  %10u  %-8s  %s\n", c.end_chunk_offset, "MEND", 0u, "", "end");
   if (!view.metadata->entries.empty()) {
