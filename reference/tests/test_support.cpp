@@ -44,4 +44,12 @@ std::vector<VectorEntry> manifestVectors() {
   return out;
 }
 
+wavelet::GridPlan cdf97Plan(int dims, uint32_t nx, uint32_t ny, uint32_t nz, int lx, int ly, int lz) {
+  const uint32_t n[3] = {nx, ny, nz};
+  const int levels[3] = {lx, ly, lz};
+  wavelet::GridPlan plan;
+  EXPECT_TRUE(wavelet::makeGridPlan(dims, n, wavelet::kOrderCdf97, levels, &plan));
+  return plan;
+}
+
 }  // namespace mrsv::test

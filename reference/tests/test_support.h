@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "wavelet/axis_plan.h"
+
 namespace mrsv::test {
 
 // Reads a file; fails the current test (and returns empty) when it cannot.
@@ -22,5 +24,9 @@ struct VectorEntry {
   uint64_t offset = 0;
 };
 std::vector<VectorEntry> manifestVectors();
+
+// The plan of a CDF 9/7 grid (spec 4.11.1) with these sizes and levels per
+// axis; fails the current test when there is none.
+wavelet::GridPlan cdf97Plan(int dims, uint32_t nx, uint32_t ny, uint32_t nz, int lx, int ly, int lz);
 
 }  // namespace mrsv::test

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "test_support.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/cdf97.h"
 #include "wavelet/cdf97_kernels.h"
@@ -175,23 +176,17 @@ void synthesizeAsWritten(const GridPlan& plan, int64_t* data, int stop_level) {
   }
 }
 
-GridPlan plan97(int dims, uint32_t nx, uint32_t ny, uint32_t nz, int lx, int ly, int lz) {
-  const uint32_t n[3] = {nx, ny, nz};
-  const int levels[3] = {lx, ly, lz};
-  GridPlan plan;
-  EXPECT_TRUE(makeGridPlan(dims, n, kOrderCdf97, levels, &plan));
-  return plan;
-}
+using test::cdf97Plan;
 
 TEST(Cdf97Kernels, SynthesisMatchesSpecWithEveryKernelSet) {
   // Odd and even lengths, 2 and 3 values on a split level, unequal depths,
   // boxes narrower and wider than a batch of lines.
   const std::vector<GridPlan> plans = {
-      plan97(1, 2, 1, 1, 1, 0, 0),      plan97(1, 3, 1, 1, 2, 0, 0),
-      plan97(1, 1201, 1, 1, 7, 0, 0),   plan97(2, 37, 23, 1, 3, 2, 0),
-      plan97(2, 317, 61, 1, 5, 4, 0),   plan97(3, 9, 10, 11, 2, 3, 1),
-      plan97(3, 16, 5, 33, 4, 0, 5),    plan97(3, 70, 3, 41, 1, 1, 3),
-      plan97(3, 5, 300, 7, 0, 6, 2)};
+      cdf97Plan(1, 2, 1, 1, 1, 0, 0),      cdf97Plan(1, 3, 1, 1, 2, 0, 0),
+      cdf97Plan(1, 1201, 1, 1, 7, 0, 0),   cdf97Plan(2, 37, 23, 1, 3, 2, 0),
+      cdf97Plan(2, 317, 61, 1, 5, 4, 0),   cdf97Plan(3, 9, 10, 11, 2, 3, 1),
+      cdf97Plan(3, 16, 5, 33, 4, 0, 5),    cdf97Plan(3, 70, 3, 41, 1, 1, 3),
+      cdf97Plan(3, 5, 300, 7, 0, 6, 2)};
   std::vector<const Cdf97Kernels*> kernels = fastKernels();
   kernels.push_back(&cdf97ScalarKernels());
   std::mt19937_64 rng(2024);
@@ -229,12 +224,12 @@ TEST(Cdf97Kernels, LastPassRowsAreTheSynthesis) {
   // have written, each position once; when the last pass is along x nothing
   // is handed out and the array holds the result.
   const std::vector<GridPlan> plans = {
-      plan97(1, 1201, 1, 1, 7, 0, 0),  // last pass along x
-      plan97(2, 317, 61, 1, 5, 4, 0),  // along y
-      plan97(2, 37, 23, 1, 3, 0, 0),   // along x (y not transformed)
-      plan97(3, 9, 10, 11, 2, 3, 1),   // along z
-      plan97(3, 70, 3, 41, 1, 1, 0),   // along y (z not transformed)
-      plan97(3, 300, 20, 7, 6, 2, 2)}; // along z, boxes wider than a batch
+      cdf97Plan(1, 1201, 1, 1, 7, 0, 0),  // last pass along x
+      cdf97Plan(2, 317, 61, 1, 5, 4, 0),  // along y
+      cdf97Plan(2, 37, 23, 1, 3, 0, 0),   // along x (y not transformed)
+      cdf97Plan(3, 9, 10, 11, 2, 3, 1),   // along z
+      cdf97Plan(3, 70, 3, 41, 1, 1, 0),   // along y (z not transformed)
+      cdf97Plan(3, 300, 20, 7, 6, 2, 2)}; // along z, boxes wider than a batch
   std::mt19937_64 rng(58);
   for (const GridPlan& plan : plans) {
     std::vector<int64_t> input(plan.paddedCount());

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "test_support.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/cdf97.h"
 #include "wavelet/synthesis_fixed.h"
@@ -17,20 +18,14 @@
 namespace mrsv::wavelet {
 namespace {
 
-GridPlan plan97(int dims, uint32_t nx, uint32_t ny, uint32_t nz, int lx, int ly, int lz) {
-  const uint32_t n[3] = {nx, ny, nz};
-  const int levels[3] = {lx, ly, lz};
-  GridPlan plan;
-  EXPECT_TRUE(makeGridPlan(dims, n, kOrderCdf97, levels, &plan));
-  return plan;
-}
+using test::cdf97Plan;
 
 // Odd and even lengths, unequal depths, down to 2 values on a split level.
 std::vector<GridPlan> somePlans() {
-  return {plan97(1, 2, 1, 1, 1, 0, 0),        plan97(1, 3, 1, 1, 2, 0, 0),
-          plan97(1, 1201, 1, 1, 7, 0, 0),     plan97(2, 37, 23, 1, 3, 2, 0),
-          plan97(2, 317, 460, 1, 5, 6, 0),    plan97(3, 9, 10, 11, 2, 3, 1),
-          plan97(3, 16, 5, 33, 4, 0, 5)};
+  return {cdf97Plan(1, 2, 1, 1, 1, 0, 0),        cdf97Plan(1, 3, 1, 1, 2, 0, 0),
+          cdf97Plan(1, 1201, 1, 1, 7, 0, 0),     cdf97Plan(2, 37, 23, 1, 3, 2, 0),
+          cdf97Plan(2, 317, 460, 1, 5, 6, 0),    cdf97Plan(3, 9, 10, 11, 2, 3, 1),
+          cdf97Plan(3, 16, 5, 33, 4, 0, 5)};
 }
 
 std::vector<double> smoothWithNoise(uint64_t count, uint32_t seed) {
@@ -76,7 +71,7 @@ TEST(Cdf97, LowPassHasUnitGainAndDetailsVanishOnCubics) {
   // The analysis low-pass is normalised to gain 1 (4.11: the low values are in
   // sample units); the analysis high-pass has 4 vanishing moments, so a cubic
   // gives (away from the ends) zero detail coefficients.
-  const GridPlan plan = plan97(1, 64, 1, 1, 1, 0, 0);
+  const GridPlan plan = cdf97Plan(1, 64, 1, 1, 1, 0, 0);
   std::vector<double> c(64, 5.0);
   analyze(plan, c.data());
   for (int i = 0; i < 32; ++i) EXPECT_NEAR(c[i], 5.0, 1e-6);
@@ -110,7 +105,7 @@ TEST(Cdf97, FixedPointFollowsTheRealSynthesis) {
 TEST(Cdf97, OneLevelByHand) {
   // Two values, one level: low s, high d. x0 = s*K, x1 = d; the steps of 4.11.3
   // with both neighbours of each value mirrored onto the other value.
-  const GridPlan plan = plan97(1, 2, 1, 1, 1, 0, 0);
+  const GridPlan plan = cdf97Plan(1, 2, 1, 1, 1, 0, 0);
   auto step = [](int64_t c, int64_t v) {  // floor((c * v + 2^23) / 2^24)
     const int64_t t = c * v + (int64_t{1} << 23);
     return t >= 0 ? t >> 24 : ~(~t >> 24);
@@ -131,7 +126,7 @@ TEST(Cdf97, OneLevelByHand) {
 
 TEST(Cdf97, ExtremeInputsSaturate) {
   // Any int64 input is read saturated and every output stays within the bound (4.11.4).
-  const GridPlan plan = plan97(2, 37, 23, 1, 3, 2, 0);
+  const GridPlan plan = cdf97Plan(2, 37, 23, 1, 3, 2, 0);
   std::mt19937_64 rng(3);
   std::vector<int64_t> data(plan.paddedCount());
   for (int64_t& v : data) {

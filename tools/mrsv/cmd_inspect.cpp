@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "cli.h"
+#include "common/byte_reader.h"
 #include "commands.h"
 #include "mrsv/file_io.h"
 #include "mrsv/grid.h"
@@ -61,14 +62,15 @@ std::string chunkRole(const ChunkType& type) {
 std::string chunkRoleText(const ChunkView& k) {
   std::string role = chunkRole(k.chunk_type);
   if (k.chunk_type != kChunkBand || k.chunk_length < 12 || k.payload == nullptr) return role;
-  const uint8_t* p = k.payload;
-  uint64_t step = 0;
-  for (int i = 7; i >= 0; --i) step = (step << 8) | p[4 + i];
+  ByteReader r(k.payload, 12);  // band_index, band_flags, reserved, step
+  const unsigned index = r.u16();
+  const unsigned prediction = r.u8() & 3u;
+  r.u8();
+  const uint64_t step = r.u64();
   static const char* const kPrediction[4] = {"", ", neighbour prediction", ", weighted prediction",
                                              ", prediction 3 (reserved)"};
   char buf[96];
-  std::snprintf(buf, sizeof buf, " #%u, step %" PRIu64 "%s", unsigned(p[0] | p[1] << 8), step,
-                kPrediction[p[2] & 3]);
+  std::snprintf(buf, sizeof buf, " #%u, step %" PRIu64 "%s", index, step, kPrediction[prediction]);
   return role + buf;
 }
 

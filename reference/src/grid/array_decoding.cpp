@@ -63,13 +63,9 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
   // A copy in a local, written back at the end: its state can then stay in
   // registers, which a decoder reached through a pointer cannot.
   RangeDecoder d = *rc;
-  const uint32_t edge = blockEdge(box.num_dims);
+  const BlockGrid blocks(box);
+  const uint32_t edge = blocks.edge;
   const uint32_t size_x = box.size[0];
-  const uint32_t size_y = box.num_dims >= 2 ? box.size[1] : 1;
-  const uint32_t size_z = box.num_dims >= 3 ? box.size[2] : 1;
-  const uint32_t bx = (size_x + edge - 1) / edge;
-  const uint32_t by = (size_y + edge - 1) / edge;
-  const uint32_t bz = (size_z + edge - 1) / edge;
   // `skip` and `magnitudes` are in the box's own raster order.
   const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
   const size_t rs = out.row_stride, ss = out.slice_stride;
@@ -131,20 +127,16 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
   };
 
   // One flag per block: those of the block before along x, y and z give the context.
-  uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(size_t{bx} * by * bz, 1));
+  uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(blocks.total(), 1));
   if (!nonzero) return false;
   bool ok = true;
-  for (uint32_t kz = 0; kz < bz && ok; ++kz)
-    for (uint32_t ky = 0; ky < by && ok; ++ky)
-      for (uint32_t kx = 0; kx < bx && ok; ++kx) {
+  for (uint32_t kz = 0; kz < blocks.count[2] && ok; ++kz)
+    for (uint32_t ky = 0; ky < blocks.count[1] && ok; ++ky)
+      for (uint32_t kx = 0; kx < blocks.count[0] && ok; ++kx) {
         const uint32_t x0 = kx * edge, y0 = ky * edge, z0 = kz * edge;
-        const uint32_t x1 = std::min(size_x, x0 + edge);
-        const uint32_t y1 = std::min(size_y, y0 + edge);
-        const uint32_t z1 = std::min(size_z, z0 + edge);
-        const size_t b = kx + size_t{bx} * (ky + size_t{by} * kz);
-        const int c = (kx > 0 && nonzero[b - 1]) | ((ky > 0 && nonzero[b - bx]) << 1) |
-                      ((kz > 0 && nonzero[b - size_t{bx} * by]) << 2);
-        const int coded = d.bit(&ctx.block[c]);
+        const uint32_t x1 = blocks.end(0, kx), y1 = blocks.end(1, ky), z1 = blocks.end(2, kz);
+        const size_t b = blocks.index(kx, ky, kz);
+        const int coded = d.bit(&ctx.block[blocks.flagContext(nonzero, kx, ky, kz)]);
         nonzero[b] = static_cast<uint8_t>(coded);
         for (uint32_t z = z0; z < z1 && ok; ++z)
           for (uint32_t y = y0; y < y1 && ok; ++y) {

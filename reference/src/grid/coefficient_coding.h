@@ -52,6 +52,35 @@ struct ArrayContexts {
 // spec: 5.7.2 block edge per dimensionality: 64 samples (1-D), 8x8 (2-D), 4x4x4 (3-D).
 inline uint32_t blockEdge(int num_dims) { return num_dims == 1 ? 64 : num_dims == 2 ? 8 : 4; }
 
+// spec: 5.7.2 the blocks of an array: how many along each axis, where block
+// (kx, ky, kz) ends along each axis (the last one of an axis may be short),
+// and the context of its flag from the flags, in raster order, of the blocks
+// before it along x, y and z. Every walk of the blocks (codeArray(), the
+// decoder's decodeUnpredictedArray(), the encoder's rdQuantizeArray()) uses it.
+struct BlockGrid {
+  uint32_t edge, size[3], count[3];
+  explicit BlockGrid(const ArrayBox& box) : edge(blockEdge(box.num_dims)) {
+    for (int a = 0; a < 3; ++a) {
+      size[a] = a < box.num_dims ? box.size[a] : 1;
+      count[a] = (size[a] + edge - 1) / edge;
+    }
+  }
+  size_t total() const { return size_t{count[0]} * count[1] * count[2]; }
+  size_t index(uint32_t kx, uint32_t ky, uint32_t kz) const {
+    return kx + size_t{count[0]} * (ky + size_t{count[1]} * kz);
+  }
+  // One past the last position of block k along axis a.
+  uint32_t end(int a, uint32_t k) const {
+    const uint32_t e = (k + 1) * edge;
+    return size[a] < e ? size[a] : e;
+  }
+  int flagContext(const uint8_t* nonzero, uint32_t kx, uint32_t ky, uint32_t kz) const {
+    const size_t b = index(kx, ky, kz);
+    return (kx > 0 && nonzero[b - 1]) | ((ky > 0 && nonzero[b - count[0]]) << 1) |
+           ((kz > 0 && nonzero[b - size_t{count[0]} * count[1]]) << 2);
+  }
+};
+
 // spec: 5.7.3 magnitude class from the weighted sum of the neighbours'
 // magnitudes: 0 for 0, then one class per doubling (1-2, 3-4, 5-8, ...).
 // Class kMagnitudeClasses - 1 = 9 takes every sum above 256; below, a table
@@ -176,24 +205,20 @@ template <class Coder>
 bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& box,
                ArrayPrediction prediction, const uint8_t* skip) {
   ArrayContexts ctx;
-  const uint32_t edge = blockEdge(box.num_dims);
-  const uint32_t bx = (box.size[0] + edge - 1) / edge;
-  const uint32_t by = box.num_dims >= 2 ? (box.size[1] + edge - 1) / edge : 1;
-  const uint32_t bz = box.num_dims >= 3 ? (box.size[2] + edge - 1) / edge : 1;
+  const BlockGrid blocks(box);
+  const uint32_t edge = blocks.edge;
   const uint32_t size_x = box.size[0];
   const size_t sx = box.size[0], sxy = size_t{box.size[0]} * box.size[1];
   // One flag per block: nonzero[] of the previous block row and slice give contexts.
-  uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(size_t{bx} * by * bz, 1));
+  uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(blocks.total(), 1));
   if (!nonzero) return false;
   bool ok = true;
-  for (uint32_t kz = 0; kz < bz && ok; ++kz)
-    for (uint32_t ky = 0; ky < by && ok; ++ky)
-      for (uint32_t kx = 0; kx < bx && ok; ++kx) {
+  for (uint32_t kz = 0; kz < blocks.count[2] && ok; ++kz)
+    for (uint32_t ky = 0; ky < blocks.count[1] && ok; ++ky)
+      for (uint32_t kx = 0; kx < blocks.count[0] && ok; ++kx) {
         const uint32_t x0 = kx * edge, y0 = ky * edge, z0 = kz * edge;
-        const uint32_t x1 = box.size[0] < x0 + edge ? box.size[0] : x0 + edge;
-        const uint32_t y1 = box.num_dims >= 2 ? (box.size[1] < y0 + edge ? box.size[1] : y0 + edge) : 1;
-        const uint32_t z1 = box.num_dims >= 3 ? (box.size[2] < z0 + edge ? box.size[2] : z0 + edge) : 1;
-        const size_t b = kx + size_t{bx} * (ky + size_t{by} * kz);
+        const uint32_t x1 = blocks.end(0, kx), y1 = blocks.end(1, ky), z1 = blocks.end(2, kz);
+        const size_t b = blocks.index(kx, ky, kz);
         if (Coder::kEncoding) {
           for (uint32_t z = z0; z < z1; ++z)
             for (uint32_t y = y0; y < y1; ++y)
@@ -206,8 +231,7 @@ bool codeArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& 
                 if (s != 0) nonzero[b] = 1;
               }
         }
-        int c = (kx > 0 && nonzero[b - 1]) | ((ky > 0 && nonzero[b - bx]) << 1) |
-                ((kz > 0 && nonzero[b - size_t{bx} * by]) << 2);
+        const int c = blocks.flagContext(nonzero, kx, ky, kz);
         nonzero[b] = static_cast<uint8_t>(coder.bit(&ctx.block[c], nonzero[b]));
         if (!nonzero[b] && prediction == ArrayPrediction::kNone) {
           // No symbol is coded in the block: every symbol (and decoded value) is 0.

@@ -737,7 +737,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   const double r = std::max(enc.range(), 1e-300) * enc.unitsPerSample();
   std::vector<uint8_t> stream, best;
   double best_delta = 0;
-  std::optional<Measured> best_measured;  // of `best`, when the PSNR search decoded it
+  std::optional<Measured> best_measured;  // of `best`, set by search()
   if (options.keep_fraction > 0) {
     // Global oracle: the base step is the importance threshold, so that every
     // kept coefficient quantises to at least 1 and every dropped one to 0.
@@ -764,7 +764,8 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
                          (metadata.entries.empty() ? kChunkHeaderSize + kChunkCrcSize : 0);
   const double target_bytes = options.bits_per_sample * n / 8.0 - reserve;
   // The step search on one encoder: for a rate the smallest step that fits,
-  // for a PSNR the largest that reaches it. False when none does.
+  // for a PSNR the largest that reaches it, with its measure; `found` is left
+  // empty when no step does.
   auto search = [&](GridEncoder& e, std::vector<uint8_t>* found, double* found_delta,
                     std::optional<Measured>* found_measured) -> Error {
     double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
@@ -840,10 +841,6 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   // data it beats the wavelets, and when the lossless stream fits (d = 0) it is
   // exact. Its error is close to uniform on -d..d, MSE d(d+1)/3, which bounds
   // the d worth trying.
-  if (!best_measured) {
-    best_measured.emplace();
-    if (Error e = enc.measure(best, &best_measured->psnr, &best_measured->max_error); !e.ok()) return e;
-  }
   const double wavelet_psnr = best_measured->psnr;
   WaveletEncodeOptions flat = options;
   flat.max_levels = 0;
