@@ -199,6 +199,19 @@ def build(g):
             "5.7.5", "a 1-D int32 line, lossless, weighted prediction", expected=canonical("int32", [200], ints))
     g.valid("line_int32_step", g.encode(ints, "int32", [200], ["--order", "2", "--step", "100"]), "5",
             "a 1-D int32 line, linear wavelets, step 100")
+    # Residuals up to 2^31 in magnitude: escapes whose unary prefix passes 11 (the last
+    # magnitude model) and whose bits below the leading one need two decode_direct groups.
+    wide, x = [], 12345
+    for _ in range(300):
+        x = (x * 1103515245 + 12345) % (1 << 31)
+        wide.append(x - (1 << 30) if x % 3 else (x % 64) - 32)
+    wide_bytes = struct.pack("<300i", *wide)
+    g.valid("line_int32_wide_lossless",
+            g.encode(wide_bytes, "int32", [300], ["--lossless", "--bound-route", "predictive", "--prediction",
+                                                  "neighbour"]),
+            "5.7.3", "a 1-D int32 line of values up to 2^30, lossless with neighbour prediction: escapes "
+            "with more than 11 prefix bits and more than 24 bits below the leading one",
+            expected=canonical("int32", [300], wide_bytes))
     vals = struct.unpack("<%dh" % (len(helens) // 2), helens)
     floats = struct.pack("<%df" % len(vals), *[v * 0.3048 + 0.125 for v in vals])
     g.valid("terrain_float32_psnr", g.encode(floats, "float32", h2, ["--psnr", "70"]), "5.8.2",

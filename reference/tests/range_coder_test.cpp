@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -9,15 +10,16 @@
 namespace mrsv {
 namespace {
 
+enum class Kind { kBit, kDirect, kSymbol };
 struct Op {
-  bool direct;
+  Kind kind;
   int context;   // model index, or bit count for direct
   uint32_t value;
 };
 
-// Random mixtures of skewed adaptive bits and direct bits, with carries
-// forced by long runs of likely bits: what is decoded equals what was coded,
-// and the decoder consumes exactly the payload.
+// Random mixtures of skewed adaptive bits, direct bits and 16-ary symbols,
+// with carries forced by long runs of likely bits and symbols: what is decoded
+// equals what was coded, and the decoder consumes exactly the payload.
 TEST(RangeCoder, RoundTripsAndConsumesExactlyThePayload) {
   std::mt19937 rng(20261122);
   for (int trial = 0; trial < 200; ++trial) {
@@ -27,20 +29,37 @@ TEST(RangeCoder, RoundTripsAndConsumesExactlyThePayload) {
     for (double& p : p_one) p = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
     p_one[0] = 0.001;  // nearly always 0: long runs stress the carry path
     p_one[1] = 0.999;
+    // Symbol model 0 nearly always sees 0 and model 1 nearly always 15 (the
+    // other symbols then sit at the floor width); the others are geometric.
+    std::vector<double> ratio(4);
+    for (double& r : ratio) r = std::uniform_real_distribution<double>(0.2, 0.95)(rng);
+    auto drawSymbol = [&](int c) {
+      if (c < 2 && rng() % 500 != 0) return c == 0 ? 0u : 15u;
+      if (c < 2) return static_cast<uint32_t>(rng() % 16);
+      uint32_t v = 0;
+      while (v < 15 && std::bernoulli_distribution(ratio[c])(rng)) ++v;
+      return v;
+    };
     for (int i = 0; i < count; ++i) {
-      if (rng() % 7 == 0) {
+      const uint32_t pick = rng() % 7;
+      if (pick == 0) {
         int n = 1 + static_cast<int>(rng() % 24);
-        ops.push_back({true, n, static_cast<uint32_t>(rng()) & ((1u << n) - 1)});
+        ops.push_back({Kind::kDirect, n, static_cast<uint32_t>(rng()) & ((1u << n) - 1)});
+      } else if (pick < 3) {
+        int c = static_cast<int>(rng() % 4);
+        ops.push_back({Kind::kSymbol, c, drawSymbol(c)});
       } else {
         int c = static_cast<int>(rng() % 8);
-        ops.push_back({false, c, std::bernoulli_distribution(p_one[c])(rng) ? 1u : 0u});
+        ops.push_back({Kind::kBit, c, std::bernoulli_distribution(p_one[c])(rng) ? 1u : 0u});
       }
     }
     std::vector<uint8_t> bytes;
     RangeEncoder enc(&bytes);
     std::vector<BitModel> models(8);
+    std::vector<SymbolModel> symbols(4);
     for (const Op& op : ops) {
-      if (op.direct) enc.direct(op.value, op.context);
+      if (op.kind == Kind::kDirect) enc.direct(op.value, op.context);
+      else if (op.kind == Kind::kSymbol) enc.symbol(&symbols[op.context], static_cast<int>(op.value));
       else enc.bit(&models[op.context], static_cast<int>(op.value));
     }
     enc.finish();
@@ -49,10 +68,12 @@ TEST(RangeCoder, RoundTripsAndConsumesExactlyThePayload) {
     RangeDecoder dec(bytes.data(), bytes.size());
     EXPECT_TRUE(dec.validStart());
     std::vector<BitModel> dmodels(8);
+    std::vector<SymbolModel> dsymbols(4);
     for (size_t i = 0; i < ops.size(); ++i) {
       const Op& op = ops[i];
-      uint32_t got = op.direct ? dec.direct(op.context)
-                               : static_cast<uint32_t>(dec.bit(&dmodels[op.context]));
+      uint32_t got = op.kind == Kind::kDirect   ? dec.direct(op.context)
+                     : op.kind == Kind::kSymbol ? static_cast<uint32_t>(dec.symbol(&dsymbols[op.context]))
+                                                : static_cast<uint32_t>(dec.bit(&dmodels[op.context]));
       ASSERT_EQ(got, op.value) << "trial " << trial << " op " << i;
     }
     EXPECT_EQ(dec.overrun(), 0u) << trial;
@@ -77,6 +98,58 @@ TEST(RangeCoder, GarbageDecodesWithoutHarm) {
   BitModel m;
   for (int i = 0; i < 1000; ++i) dec.bit(&m);
   EXPECT_GT(dec.overrun(), 0u);
+}
+
+// A string no encoder writes starts with code = range = 2^32 - 1: every start
+// is at most code, so decode_symbol gives 15, and the arithmetic stays in
+// unsigned 32 bits (the sanitizer builds run this too).
+TEST(RangeCoder, GarbageSymbolsStayInRange) {
+  std::vector<uint8_t> garbage = {0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x80};
+  RangeDecoder dec(garbage.data(), garbage.size());
+  SymbolModel m;
+  EXPECT_EQ(dec.symbol(&m), 15);
+  for (int i = 0; i < 1000; ++i) {
+    const int s = dec.symbol(&m);
+    ASSERT_GE(s, 0);
+    ASSERT_LT(s, kSymbolCount);
+  }
+  EXPECT_GT(dec.overrun(), 0u);
+}
+
+// spec 5.6 written out plainly: start(i), the largest i with start(i) <= q,
+// and the adaptation rule. SymbolModel's plain and vectorised (where SSE2 is
+// available) paths must agree with it after any history, and keep every width
+// at least 4.
+TEST(SymbolModel, MatchesTheSpecificationAfterAnyHistory) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 50; ++trial) {
+    SymbolModel model, plain;
+    uint32_t cum[16], count = 0;
+    const uint32_t initial[16] = {0,     16352, 24528, 28616, 30660, 31682, 32193, 32448,
+                                  32576, 32640, 32672, 32688, 32696, 32700, 32702, 32703};
+    for (int i = 0; i < 16; ++i) cum[i] = initial[i];
+    const int favourite = static_cast<int>(rng() % 16);
+    for (int step = 0; step < 3000; ++step) {
+      for (int i = 0; i < 16; ++i) ASSERT_EQ(model.cum[i], cum[i]) << trial << " " << step;
+      for (int i = 0; i < 16; ++i) ASSERT_EQ(plain.cum[i], cum[i]) << trial << " " << step;
+      auto start = [&](int i) { return i == 16 ? 32768u : cum[i] + 4u * i; };
+      for (int i = 0; i < 16; ++i) ASSERT_GE(start(i + 1) - start(i), 4u);
+      for (uint32_t q : {0u, 1u, 32767u, 32768u, 32831u, static_cast<uint32_t>(rng() % 32832),
+                         start(static_cast<int>(rng() % 16)), start(static_cast<int>(rng() % 16)) - 1}) {
+        int expected = 0;
+        for (int i = 1; i < 16; ++i)
+          if (start(i) <= q) expected = i;
+        ASSERT_EQ(model.find(q), expected) << "q " << q;
+        ASSERT_EQ(model.findPlain(q), expected) << "q " << q;
+      }
+      const int s = rng() % 4 != 0 ? favourite : static_cast<int>(rng() % 16);
+      const int k = count < 64 ? 5 : 7;
+      count = std::min(count + 1, 64u);
+      for (int i = 1; i < 16; ++i) cum[i] = i > s ? cum[i] + ((32704 - cum[i]) >> k) : cum[i] - (cum[i] >> k);
+      model.adapt(s);
+      plain.adaptPlain(s);
+    }
+  }
 }
 
 }  // namespace

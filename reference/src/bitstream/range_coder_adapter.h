@@ -14,6 +14,10 @@ struct EncodingCoder {
     rc->bit(m, b);
     return b;
   }
+  int symbol(SymbolModel* m, int s) {
+    rc->symbol(m, s);
+    return s;
+  }
   uint32_t direct(uint32_t value, int n) {
     rc->direct(value, n);
     return value;
@@ -25,6 +29,7 @@ struct DecodingCoder {
   static constexpr bool kEncoding = false;
   RangeDecoder* rc;
   int bit(BitModel* m, int) { return rc->bit(m); }
+  int symbol(SymbolModel* m, int) { return rc->symbol(m); }
   uint32_t direct(uint32_t, int n) { return rc->direct(n); }
   // Bytes were wanted past the payload: everything decoded since is garbage.
   bool overrun() const { return rc->overrun() != 0; }

@@ -1,6 +1,7 @@
-// Adaptive binary range decoder. spec: 5.6 (entropy decoding).
+// Adaptive range decoder. spec: 5.6 (entropy decoding).
 //
-// A binary arithmetic coder with 11-bit adaptive probabilities and a 32-bit
+// An arithmetic coder of bits with 11-bit adaptive probabilities and of
+// 16-ary symbols (symbol_model.h), with a 32-bit
 // range, byte-wise renormalisation and carry propagation in the encoder. All
 // arithmetic is on unsigned 32-bit integers, so any byte string decodes to
 // something (possibly garbage) without undefined behaviour; reading past the
@@ -10,6 +11,8 @@
 
 #include <cstddef>
 #include <cstdint>
+
+#include "bitstream/symbol_model.h"
 
 namespace mrsv {
 
@@ -60,6 +63,20 @@ class RangeDecoder {
     model->p0 = static_cast<uint16_t>(if0 ^ ((if0 ^ if1) & ones));
     normalize();
     return static_cast<int>(b);
+  }
+
+  // spec: 5.6 decode_symbol(model): the largest s with start(s) * r <= code,
+  // r = range >> 15. The test start(s) * r <= code is start(s) <= code / r
+  // in integers, so one division leaves 16 small comparisons.
+  int symbol(SymbolModel* model) {
+    const uint32_t r = range_ >> kSymbolBits;
+    const int s = model->find(code_ / r);
+    const uint32_t low = model->start(s) * r;
+    code_ -= low;
+    range_ = s + 1 < kSymbolCount ? (model->start(s + 1) - model->start(s)) * r : range_ - low;
+    model->adapt(s);
+    normalize();
+    return s;
   }
 
   // spec: 5.6 decode_direct(n): n equiprobable bits, most significant first.

@@ -25,6 +25,15 @@ class RangeEncoder {
     normalize();
   }
 
+  void symbol(SymbolModel* model, int s) {
+    const uint32_t r = range_ >> kSymbolBits;
+    const uint32_t low = model->start(s) * r;
+    low_ += low;
+    range_ = s + 1 < kSymbolCount ? (model->start(s + 1) - model->start(s)) * r : range_ - low;
+    model->adapt(s);
+    normalize();
+  }
+
   void direct(uint32_t value, int n) {
     while (n--) {
       range_ >>= 1;

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <type_traits>
 
+#include "bitstream/range_coder_adapter.h"
+
 namespace mrsv {
 namespace {
 
@@ -26,22 +28,12 @@ inline bool decodeNonzero(RangeDecoder& d, ArrayContexts& ctx, int cls, int64_t 
                           int64_t* sym, uint64_t* mag) {
   // Context 0, 1, 2 for left = 0, > 0, < 0; computed, not branched on.
   const int negative = d.bitUnpredictable(&ctx.sign[(left != 0) + (left < 0)]);
-  // Step 4: n, the bit length of |s| less one, in adaptive unary.
-  BitModel* unary = ctx.magnitude[cls];
-  int n = 0;
-  while (d.bit(&unary[n < kMagnitudeModels ? n : kMagnitudeModels - 1]) != 0)
-    if (++n == kMaxMagnitudeBits - 1) return false;
-  // Step 5: the leading one, the adaptive bit below it, then n - 1 direct bits
-  // in groups of at most 24, most significant first.
-  uint64_t m = 1;
-  if (n > 0) {
-    BitModel* low = &ctx.first_low_bit[cls][n < kMagnitudeModels ? n : kMagnitudeModels - 1];
-    m = 2 | static_cast<uint64_t>(d.bitUnpredictable(low));
-    for (int done = 1; done < n;) {
-      const int chunk = n - done > 24 ? 24 : n - done;
-      m = (m << chunk) | d.direct(chunk);
-      done += chunk;
-    }
+  const uint64_t level = static_cast<uint64_t>(d.symbol(&ctx.level[cls]));
+  uint64_t m = level + 1;
+  if (level == kEscapeSymbol) {  // rare: the shared code, through the adapter
+    DecodingCoder coder{&d};
+    if (!codeEscape(coder, ctx, cls, &m)) return false;
+    m += kEscapeSymbol;
   }
   // -m when negative, as (m XOR all ones) + 1: again no branch on a coin toss.
   const uint64_t flip = 0 - static_cast<uint64_t>(negative);

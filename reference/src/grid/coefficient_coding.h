@@ -32,7 +32,7 @@ enum class ArrayPrediction : uint8_t {
 
 constexpr int kMagnitudeClasses = 10;
 constexpr int kMagnitudeModels = 12;
-constexpr int kMaxMagnitudeBits = 40;  // coded symbols satisfy |s| < 2^40
+constexpr int kMaxMagnitudeBits = 40;  // coded symbols satisfy |s| < 2^39 + 15 < 2^40
 // spec: 5.7.4 decoded values are clamped to +-kArrayValueLimit, so that garbage
 // cannot grow through the predictor; an encoder never needs the clamp.
 constexpr int64_t kArrayValueLimit = (int64_t{1} << 40) - 1;
@@ -45,6 +45,7 @@ struct ArrayContexts {
   BitModel block[8];
   BitModel zero[kMagnitudeClasses];
   BitModel sign[3];
+  SymbolModel level[kMagnitudeClasses];
   BitModel magnitude[kMagnitudeClasses][kMagnitudeModels];
   BitModel first_low_bit[kMagnitudeClasses][kMagnitudeModels];
 };
@@ -141,41 +142,60 @@ inline int64_t predictNeighbour(const int64_t* v, const ArrayBox& box, uint32_t 
   return at(0, 0, 1);
 }
 
-// The sign and magnitude of a nonzero symbol *sym (spec 5.7.3 steps 3 to 5), in
-// magnitude class `cls`. Returns false when a decoded magnitude prefix is longer
-// than kMaxMagnitudeBits - 1.
+// spec: 5.7.3 step 5, a magnitude's part e >= 1 above the escape as an
+// Elias-gamma-like code: n = floor(log2(e)) in adaptive unary, the bit below
+// the leading one adaptive, the other n - 1 bits equiprobable in groups of at
+// most 24. Returns false when a decoded prefix reaches kMaxMagnitudeBits - 1.
 template <class Coder>
-bool codeNonzeroSymbol(Coder& coder, ArrayContexts& ctx, int cls, int64_t left, int64_t* sym) {
-  int64_t value = Coder::kEncoding ? *sym : 0;
-  uint64_t mag = magnitudeOf(value);
-  int sign_ctx = left == 0 ? 0 : left > 0 ? 1 : 2;
-  int negative = coder.bit(&ctx.sign[sign_ctx], value < 0);
-  // |s| - 1 as an Elias-gamma-like code: the bit length of |s| in adaptive
-  // unary, then the bits below its leading one, equiprobable.
-  int length = 0;  // floor(log2(|s|))
+bool codeEscape(Coder& coder, ArrayContexts& ctx, int cls, uint64_t* e) {
+  const uint64_t value = Coder::kEncoding ? *e : 0;
+  int length = 0;  // floor(log2(e))
   if (Coder::kEncoding)
-    while ((mag >> (length + 1)) != 0) ++length;
+    while ((value >> (length + 1)) != 0) ++length;
   int n = 0;
   while (true) {
     BitModel* m = &ctx.magnitude[cls][n < kMagnitudeModels ? n : kMagnitudeModels - 1];
     if (coder.bit(m, n < length) == 0) break;
     if (++n == kMaxMagnitudeBits - 1) return false;
   }
-  // The bit below the leading one is coded adaptively, the rest equiprobable.
   uint64_t low = 0;
   int done = 0;
   if (n > 0) {
     BitModel* m = &ctx.first_low_bit[cls][n < kMagnitudeModels ? n : kMagnitudeModels - 1];
-    low = static_cast<uint64_t>(coder.bit(m, static_cast<int>((mag >> (n - 1)) & 1)));
+    low = static_cast<uint64_t>(coder.bit(m, static_cast<int>((value >> (n - 1)) & 1)));
     done = 1;
   }
   while (done < n) {
     int chunk = n - done > 24 ? 24 : n - done;
-    uint32_t part = static_cast<uint32_t>((mag >> (n - done - chunk)) & ((1u << chunk) - 1));
+    uint32_t part = static_cast<uint32_t>((value >> (n - done - chunk)) & ((1u << chunk) - 1));
     low = (low << chunk) | coder.direct(part, chunk);
     done += chunk;
   }
-  uint64_t decoded = (uint64_t{1} << n) | low;
+  *e = (uint64_t{1} << n) | low;
+  return true;
+}
+
+// Magnitudes 1 to 15 are the symbols 0 to 14 of one 16-ary model per class;
+// symbol 15 is the escape to codeEscape() with e = |s| - 15.
+constexpr uint64_t kEscapeSymbol = kSymbolCount - 1;
+
+// The sign and magnitude of a nonzero symbol *sym (spec 5.7.3 steps 3 to 5), in
+// magnitude class `cls`. Returns false when a decoded magnitude prefix is longer
+// than kMaxMagnitudeBits - 1.
+template <class Coder>
+bool codeNonzeroSymbol(Coder& coder, ArrayContexts& ctx, int cls, int64_t left, int64_t* sym) {
+  const int64_t value = Coder::kEncoding ? *sym : 0;
+  const uint64_t mag = magnitudeOf(value);
+  const int sign_ctx = left == 0 ? 0 : left > 0 ? 1 : 2;
+  const int negative = coder.bit(&ctx.sign[sign_ctx], value < 0);
+  const uint64_t level = static_cast<uint64_t>(
+      coder.symbol(&ctx.level[cls], static_cast<int>(mag - 1 < kEscapeSymbol ? mag - 1 : kEscapeSymbol)));
+  uint64_t decoded = level + 1;
+  if (level == kEscapeSymbol) {
+    uint64_t e = mag - kEscapeSymbol;
+    if (!codeEscape(coder, ctx, cls, &e)) return false;
+    decoded = e + kEscapeSymbol;
+  }
   *sym = negative ? -static_cast<int64_t>(decoded) : static_cast<int64_t>(decoded);
   return true;
 }

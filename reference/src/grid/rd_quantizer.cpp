@@ -26,8 +26,21 @@ double bitCost(const BitModel* m, int b) {
   return costs.bits[b][m->p0];
 }
 
+// -log2 of the probability of a symbol whose interval is w of 2^15 wide.
+struct SymbolCosts {
+  float bits[(1u << kSymbolBits) + 1];
+  SymbolCosts() {
+    for (uint32_t w = 0; w <= 1u << kSymbolBits; ++w)
+      bits[w] = static_cast<float>(kSymbolBits - std::log2(std::max<uint32_t>(w, 1)));
+  }
+};
+double symbolCost(const SymbolModel* m, int s) {
+  static const SymbolCosts costs;
+  return costs.bits[m->start(s + 1) - m->start(s)];
+}
+
 // A coder for codeSymbol() and codeArray()'s shape (range_coder_adapter.h) that
-// writes nothing: it adds up -log2 of each bit's probability and, with
+// writes nothing: it adds up -log2 of each bit's and symbol's probability and, with
 // kCommit, adapts the models as the range encoder does. So the costs follow
 // the coding of 5.7.3 exactly.
 template <bool kCommit>
@@ -43,6 +56,11 @@ struct CostCoder {
         m->p0 = static_cast<uint16_t>(m->p0 - (m->p0 >> kAdaptShift));
     }
     return b;
+  }
+  int symbol(SymbolModel* m, int s) {
+    bits += symbolCost(m, s);
+    if (kCommit) m->adapt(s);
+    return s;
   }
   uint32_t direct(uint32_t value, int n) {
     bits += n;  // equiprobable (decode_direct)
