@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of a fuzz build for SECONDS each, seeded from the
-# conformance vectors and the committed corpus. New inputs go to a scratch
-# corpus; crashes are written to fuzz/findings/ and fail the run.
+# conformance vectors (container and coded) and the committed corpus. New
+# inputs go to a scratch corpus; crashes are written to fuzz/findings/ and fail
+# the run.
 # Usage: fuzz/run_fuzz.sh BUILD_DIR SECONDS [TARGET...]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -22,6 +23,7 @@ for t in "${targets[@]}"; do
   if ! "$build/fuzz/$t" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
       -artifact_prefix="$findings/$t-" -print_final_stats=1 \
       "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
+      "$here/../conformance/vectors/coded_valid" "$here/../conformance/vectors/coded_invalid" \
       "$here/corpus" "$here/corpus_mesh" >"$scratch/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
     tail -40 "$scratch/$t.log"

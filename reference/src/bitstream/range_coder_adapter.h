@@ -14,6 +14,7 @@ struct EncodingCoder {
     rc->bit(m, b);
     return b;
   }
+  int bitUnpredictable(BitModel* m, int b) { return bit(m, b); }
   int symbol(SymbolModel* m, int s) {
     rc->symbol(m, s);
     return s;
@@ -29,6 +30,8 @@ struct DecodingCoder {
   static constexpr bool kEncoding = false;
   RangeDecoder* rc;
   int bit(BitModel* m, int) { return rc->bit(m); }
+  // The same decision as bit(), computed without a branch on its outcome.
+  int bitUnpredictable(BitModel* m, int) { return rc->bitUnpredictable(m); }
   int symbol(SymbolModel* m, int) { return rc->symbol(m); }
   uint32_t direct(uint32_t, int n) { return rc->direct(n); }
   // Bytes were wanted past the payload: everything decoded since is garbage.

@@ -44,7 +44,9 @@ bool codeWeightedSymbol(Coder& coder, WeightedContexts& ctx, int k, int t, int64
     return true;
   }
   const uint64_t mag = magnitudeOf(value);
-  const int negative = coder.bit(&ctx.sign[k][t], value < 0);
+  // The sign and the bits below the leading one are close to coin tosses:
+  // decoded without a branch on the outcome (RangeDecoder::bitUnpredictable).
+  const int negative = coder.bitUnpredictable(&ctx.sign[k][t], value < 0);
   int length = 0;  // floor(log2(|s|))
   if (Coder::kEncoding)
     while ((mag >> (length + 1)) != 0) ++length;
@@ -60,13 +62,15 @@ bool codeWeightedSymbol(Coder& coder, WeightedContexts& ctx, int k, int t, int64
   // Residuals are roughly Laplacian, so the two bits below the leading one
   // are skewed towards 0; the rest are nearly equiprobable.
   if (n >= 1) {
-    low = static_cast<uint64_t>(coder.bit(&ctx.first_low_bit[k][model], static_cast<int>((mag >> (n - 1)) & 1)));
+    low = static_cast<uint64_t>(
+        coder.bitUnpredictable(&ctx.first_low_bit[k][model], static_cast<int>((mag >> (n - 1)) & 1)));
     done = 1;
   }
   if (n >= 2) {
     const int h = static_cast<int>(low);
     low = (low << 1) |
-          static_cast<uint64_t>(coder.bit(&ctx.second_low_bit[k][model][h], static_cast<int>((mag >> (n - 2)) & 1)));
+          static_cast<uint64_t>(
+              coder.bitUnpredictable(&ctx.second_low_bit[k][model][h], static_cast<int>((mag >> (n - 2)) & 1)));
     done = 2;
   }
   while (done < n) {

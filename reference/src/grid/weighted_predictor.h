@@ -16,6 +16,8 @@
 
 namespace mrsv {
 
+static_assert((int64_t{-9} >> 3) == -2, "floor division by shifting needs an arithmetic right shift");
+
 // max(1, floor(2^14 / (s + 1))) for every error sum s below 2^14 (above, the
 // weight is 1): a table instead of eight divisions per value.
 struct WeightTable {
@@ -72,11 +74,13 @@ class WeightedPredictor {
     const int64_t e_nw = has_w && up ? te_up[x - 1] : e_n;
     const int64_t e_ne = has_ne ? te_up[x + 1] : e_n;
     const int64_t w8 = 8 * w, n8 = 8 * n, nw8 = 8 * nw, ne8 = 8 * ne;
-    const int64_t correction = floorDiv(e_w + e_n + e_ne, 2);
+    // Floor divisions by powers of two are arithmetic shifts (C++20 defines
+    // >> on negative values so; every compiler we build with did before).
+    const int64_t correction = (e_w + e_n + e_ne) >> 1;
     sub_[0] = w8 + ne8 - n8;
     sub_[1] = n8 - correction;
-    sub_[2] = w8 - floorDiv(10 * (e_w + e_n + e_nw), 32);
-    sub_[3] = n8 - floorDiv(7 * (e_nw + e_n + e_ne), 32);
+    sub_[2] = w8 - ((10 * (e_w + e_n + e_nw)) >> 5);
+    sub_[3] = n8 - ((7 * (e_nw + e_n + e_ne)) >> 5);
     sub_[4] = w8 + n8 - nw8;
     sub_[5] = 2 * n8 - 8 * nn;
     sub_[6] = 2 * w8 - 8 * ww;
@@ -103,7 +107,7 @@ class WeightedPredictor {
     }
     blend_ = floorDiv(weighted + weight_sum / 2, weight_sum);
     bias_ = e_w + e_n;
-    return floorDiv(blend_ + 4, 8);
+    return (blend_ + 4) >> 3;
   }
 
   // The sign context of the symbol just predicted (spec 5.7.5): the sign of
