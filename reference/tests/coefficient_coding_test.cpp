@@ -79,6 +79,23 @@ TEST(CoefficientCoding, SparseAndExtremeValuesEveryShape) {
   }
 }
 
+// spec 5.7.3: the last magnitudes of the 16-ary symbol (14, 15), the first
+// escapes (16, 17) and the largest codable one, 2^39 + 14; 2^39 + 15 would need
+// a 40th prefix bit, which the encoder refuses.
+TEST(CoefficientCoding, MagnitudesAroundTheEscapeAndTheLimit) {
+  ArrayBox box;
+  box.num_dims = 1;
+  box.size[0] = 12;
+  const int64_t largest = (int64_t{1} << 39) + 14;
+  roundTrip({14, -15, 16, -17, 0, 15, 1, -16, largest, -largest, 17, 0}, box, ArrayPrediction::kNone);
+  std::vector<uint8_t> bytes;
+  RangeEncoder rc(&bytes);
+  EncodingCoder coder{&rc};
+  std::vector<int64_t> values(12, 0), symbols(12);
+  values[3] = largest + 1;
+  EXPECT_FALSE(codeArray(coder, values.data(), symbols.data(), box, ArrayPrediction::kNone, nullptr));
+}
+
 TEST(CoefficientCoding, GarbageNeverOverflows) {
   std::mt19937_64 rng(11);
   ArrayBox box;

@@ -1,4 +1,5 @@
-// Adaptive binary range encoder, the inverse of RangeDecoder (spec 5.6).
+// Adaptive range encoder of bits and 16-ary symbols, the inverse of
+// RangeDecoder (spec 5.6).
 #pragma once
 
 #include <cstdint>

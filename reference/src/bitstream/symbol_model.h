@@ -4,10 +4,10 @@
 // kSymbolFloor wide so that every symbol stays codable. The adaptive part is
 // cum[i], the share of the symbols below i out of kSymbolShares; symbol i
 // has the interval [start(i), start(i + 1)) with start(i) = cum[i] +
-// kSymbolFloor * i and start(16) = 2^15. A model learns fast at first (1/32
-// of the way to the last symbol, for its first 64 symbols) and then slowly
-// (1/128): measured on a CT volume, this kept the binary coder's rate, which
-// one fixed rate of either speed did not.
+// kSymbolFloor * i and start(16) = 2^15. A model learns fast at first (each
+// cum[i] moves 1/32 of the way towards the symbol just coded, for its first 64
+// symbols) and then slowly (1/128): measured on a CT volume (D29), this kept
+// the binary coder's rate, which a fixed 1/32 or 1/64 did not.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +28,8 @@ struct SymbolModel {
   uint16_t cum[kSymbolCount];  // cum[0] = 0 always
   uint16_t count = 0;          // symbols coded with the model, up to kSymbolFastCount
 
-  // Each symbol starts half as likely as the one before: cum[i] =
+  // Each symbol starts about half as likely as the one before (the floor of
+  // 4 flattens the tail): cum[i] =
   // floor(32704 * (2^16 - 2^(16 - i)) / (2^16 - 1)). Small magnitudes are the
   // common ones, and a uniform start cost small bands (St Helens at 0.5 bits
   // per sample: 57.37 against 57.46 dB).
@@ -54,7 +55,7 @@ struct SymbolModel {
   // so those above q are a run at the end, found by one comparison of all 16.
   int find(uint32_t q) const {
 #if defined(__SSE2__)
-    const uint16_t q16 = static_cast<uint16_t>(q < 0x7FFFu ? q : 0x7FFFu);  // every start < 2^15 - 4
+    const uint16_t q16 = static_cast<uint16_t>(q < 0x7FFFu ? q : 0x7FFFu);  // every start <= 2^15 - 4
     const __m128i steps_lo = _mm_setr_epi16(0, 4, 8, 12, 16, 20, 24, 28);
     const __m128i steps_hi = _mm_setr_epi16(32, 36, 40, 44, 48, 52, 56, 60);
     const __m128i* p = reinterpret_cast<const __m128i*>(cum);

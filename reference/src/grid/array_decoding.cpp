@@ -20,7 +20,7 @@ inline uint16_t cappedMagnitude(uint64_t m) {
   return static_cast<uint16_t>(m < kMagnitudeCap ? m : kMagnitudeCap);
 }
 
-// spec: 5.7.3 steps 3 to 5, the sign and magnitude of a symbol whose zero flag
+// spec: 5.7.3 steps 3 to 6, the sign and magnitude of a symbol whose zero flag
 // was 1, as codeNonzeroSymbol() decodes them; `left` gives the sign context by
 // its sign. The symbol goes to *sym, its magnitude to *mag. False when the
 // magnitude prefix reaches kMaxMagnitudeBits - 1 ones.

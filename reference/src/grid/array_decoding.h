@@ -43,7 +43,7 @@ inline int64_t dequantizeSymbol(int64_t q, uint64_t step) {
 // be null) marks positions, in raster order of the box, that are not coded and
 // get 0. Every position of the box is written. `magnitudes` is scratch of
 // box.count() entries. Returns false when a magnitude prefix is longer than
-// kMaxMagnitudeBits - 1 (spec 5.7.3 step 4); overrun and consumed bytes are
+// kMaxMagnitudeBits - 1 (spec 5.7.3 step 5); overrun and consumed bytes are
 // left in `rc` as codeArray() leaves them.
 bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t* skip,
                             const ArrayDestination& out, uint16_t* magnitudes);

@@ -179,7 +179,7 @@ bool codeEscape(Coder& coder, ArrayContexts& ctx, int cls, uint64_t* e) {
 // symbol 15 is the escape to codeEscape() with e = |s| - 15.
 constexpr uint64_t kEscapeSymbol = kSymbolCount - 1;
 
-// The sign and magnitude of a nonzero symbol *sym (spec 5.7.3 steps 3 to 5), in
+// The sign and magnitude of a nonzero symbol *sym (spec 5.7.3 steps 3 to 6), in
 // magnitude class `cls`. Returns false when a decoded magnitude prefix is longer
 // than kMaxMagnitudeBits - 1.
 template <class Coder>

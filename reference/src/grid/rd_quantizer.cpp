@@ -42,7 +42,7 @@ double symbolCost(const SymbolModel* m, int s) {
 // A coder for codeSymbol() and codeArray()'s shape (range_coder_adapter.h) that
 // writes nothing: it adds up -log2 of each bit's and symbol's probability and, with
 // kCommit, adapts the models as the range encoder does. So the costs follow
-// the coding of 5.7.3 exactly.
+// the coding of 5.7.3 (up to the rounding of the intervals to the range).
 template <bool kCommit>
 struct CostCoder {
   static constexpr bool kEncoding = true;

@@ -44,8 +44,8 @@ bool codeWeightedSymbol(Coder& coder, WeightedContexts& ctx, int k, int t, int64
     return true;
   }
   const uint64_t mag = magnitudeOf(value);
-  // The sign and the bits below the leading one are close to coin tosses:
-  // decoded without a branch on the outcome (RangeDecoder::bitUnpredictable).
+  // The sign and the two bits below the leading one are hard for a branch
+  // predictor: decoded without a branch on the outcome (bitUnpredictable).
   const int negative = coder.bitUnpredictable(&ctx.sign[k][t], value < 0);
   int length = 0;  // floor(log2(|s|))
   if (Coder::kEncoding)
