@@ -162,6 +162,21 @@ def build(g):
     g.valid("terrain_nodata_max_error4",
             g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "residual"], nodata=-32768),
             "5.5, 5.8.2", "SRTM window with voids: no-data mask, residual with step 9")
+    # A void rectangle over whole 8 x 8 blocks of the residual and of the predicted
+    # samples: blocks whose every position is skipped still code their flag (5.7.2).
+    holed = bytearray(helens)
+    for y in range(8, 32):
+        for x in range(16, 40):
+            struct.pack_into("<h", holed, 2 * (y * h2[0] + x), -32768)
+    holed = bytes(holed)
+    g.valid("terrain_void_blocks_max_error4",
+            g.encode(holed, "int16", h2, ["--max-error", "4", "--bound-route", "residual"], nodata=-32768),
+            "5.7.2, 5.8", "St Helens with a 24 x 24 void: whole blocks of the residual skipped")
+    g.valid("terrain_void_blocks_predictive_lossless",
+            g.encode(holed, "int16", h2, ["--lossless", "--bound-route", "predictive", "--prediction", "neighbour"],
+                     nodata=-32768),
+            "5.7.2, 5.7.4", "the same, lossless with neighbour prediction: whole predicted blocks skipped",
+            expected=canonical("int16", h2, holed, nodata_bits=0x8000))
     g.valid("terrain_nodata_predictive_max_error4",
             g.encode(fuji, "int16", [53, 47], ["--max-error", "4", "--bound-route", "predictive"], nodata=-32768),
             "5.7.4, 5.8.2", "SRTM window with voids: levels 0, samples quantised with step 9, predicted")
