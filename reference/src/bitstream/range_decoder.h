@@ -73,7 +73,7 @@ class RangeDecoder {
     const int s = model->find(code_ / r);
     const uint32_t low = model->start(s) * r;
     code_ -= low;
-    range_ = s + 1 < kSymbolCount ? (model->start(s + 1) - model->start(s)) * r : range_ - low;
+    range_ = s + 1 < kSymbolCount ? model->width(s) * r : range_ - low;
     model->adapt(s);
     normalize();
     return s;

@@ -30,7 +30,7 @@ class RangeEncoder {
     const uint32_t r = range_ >> kSymbolBits;
     const uint32_t low = model->start(s) * r;
     low_ += low;
-    range_ = s + 1 < kSymbolCount ? (model->start(s + 1) - model->start(s)) * r : range_ - low;
+    range_ = s + 1 < kSymbolCount ? model->width(s) * r : range_ - low;
     model->adapt(s);
     normalize();
   }

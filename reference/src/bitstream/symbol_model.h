@@ -41,6 +41,8 @@ struct SymbolModel {
   uint32_t start(int i) const {
     return i == kSymbolCount ? 1u << kSymbolBits : cum[i] + kSymbolFloor * static_cast<uint32_t>(i);
   }
+  // The width of symbol s's interval, at least kSymbolFloor.
+  uint32_t width(int s) const { return start(s + 1) - start(s); }
 
   // The largest s with start(s) <= q (start(0) = 0, so s >= 0), as the
   // specification says it.

@@ -36,7 +36,7 @@ struct SymbolCosts {
 };
 double symbolCost(const SymbolModel* m, int s) {
   static const SymbolCosts costs;
-  return costs.bits[m->start(s + 1) - m->start(s)];
+  return costs.bits[m->width(s)];
 }
 
 // A coder for codeSymbol() and codeArray()'s shape (range_coder_adapter.h) that
