@@ -277,6 +277,68 @@ TEST(Cdf97Kernels, LastPassRowsAreTheSynthesis) {
   }
 }
 
+TEST(Cdf97Kernels, LastLevelFromRowsIsTheSynthesis) {
+  // The last level synthesised slice by slice from rows of the Mallat layout
+  // hands out every position once, with the values of the whole synthesis;
+  // plans it cannot take are refused. Odd and even depths (the mirrored ends
+  // of the pass along z), 2 and 3 slices, unequal depths, values near the bound.
+  const std::vector<GridPlan> plans = {
+      cdf97Plan(3, 9, 10, 11, 2, 3, 1),  cdf97Plan(3, 16, 5, 33, 4, 1, 5),
+      cdf97Plan(3, 70, 3, 2, 1, 1, 1),   cdf97Plan(3, 7, 6, 3, 1, 2, 1),
+      cdf97Plan(3, 300, 20, 8, 6, 2, 2), cdf97Plan(3, 33, 17, 12, 3, 3, 3)};
+  std::mt19937_64 rng(77);
+  for (const GridPlan& plan : plans) {
+    std::vector<int64_t> input(plan.paddedCount());
+    bool zeros = false;
+    for (int64_t& v : input) {
+      if (rng() % 64 == 0) zeros = !zeros;
+      v = zeros ? 0
+          : rng() % 8 ? static_cast<int64_t>(rng() % (uint64_t{1} << 30)) - (int64_t{1} << 29)
+                      : randomValue(rng, true);
+    }
+    std::vector<int64_t> want = input;
+    synthesizeAsWritten(plan, want.data(), 0);
+    std::vector<int64_t> level1 = input;  // every level above 1 synthesised
+    synthesizeFixedCdf97(plan, level1.data(), 1);
+    struct State {
+      const std::vector<int64_t>* level1;
+      std::vector<int64_t> values;
+      std::vector<int> seen;
+      size_t px, pxy;
+    } st{&level1, std::vector<int64_t>(input.size()), std::vector<int>(input.size()),
+         plan.axis[0].size(0), size_t{plan.axis[0].size(0)} * plan.axis[1].size(0)};
+    const MallatRows from{[](void* c, size_t y, size_t z, int64_t* values) {
+                            const State& st = *static_cast<const State*>(c);
+                            const int64_t* row = st.level1->data() + y * st.px + z * st.pxy;
+                            std::copy(row, row + st.px, values);
+                          },
+                          &st};
+    const SynthesisRows to{[](void* c, size_t x, size_t y, size_t z, const int64_t* values,
+                              size_t n) {
+                             State& st = *static_cast<State*>(c);
+                             for (size_t i = 0; i < n; ++i) {
+                               st.values[x + i + y * st.px + z * st.pxy] = values[i];
+                               ++st.seen[x + i + y * st.px + z * st.pxy];
+                             }
+                           },
+                           &st};
+    for (const Cdf97Kernels* k : {&cdf97ScalarKernels(), &cdf97Kernels()}) {
+      std::fill(st.seen.begin(), st.seen.end(), 0);
+      ASSERT_TRUE(synthesizeLastLevelCdf97(plan, from, to, *k));
+      ASSERT_EQ(st.seen, std::vector<int>(input.size(), 1));
+      ASSERT_EQ(st.values, want) << k->name << " " << plan.axis[0].samples << "x"
+                                 << plan.axis[1].samples << "x" << plan.axis[2].samples;
+    }
+  }
+  // Not split along every axis at level 1: refused, nothing called.
+  for (const GridPlan& plan : {cdf97Plan(3, 9, 10, 11, 2, 0, 1), cdf97Plan(2, 37, 23, 1, 3, 2, 0)}) {
+    const MallatRows from{[](void*, size_t, size_t, int64_t*) { FAIL(); }, nullptr};
+    const SynthesisRows to{[](void*, size_t, size_t, size_t, const int64_t*, size_t) { FAIL(); },
+                           nullptr};
+    EXPECT_FALSE(synthesizeLastLevelCdf97(plan, from, to));
+  }
+}
+
 TEST(Cdf97Kernels, AvailableImplementations) {
   // Documents what this machine runs; the comparisons above cover it.
   const Cdf97Kernels& best = cdf97Kernels();

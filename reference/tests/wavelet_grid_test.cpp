@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <random>
 
 #include "mrsv/encode.h"
 #include "mrsv/grid.h"
@@ -220,6 +221,59 @@ TEST(WaveletGrid, DeterministicAndPrefixesRefine) {
   EXPECT_EQ(options.order, kWaveletOrderCdf97);
   EXPECT_EQ(half.output_size[0], (317u + 1) / 2);  // ceil(N / 2) (spec 4.11.1)
   EXPECT_EQ(half.samples.size(), size_t{half.output_size[0]} * half.output_size[1] * 2);
+}
+
+// The decoder takes the last level of a 3-D 9/7 grid of integer samples slice
+// by slice, its bands kept apart (grid/last_level_bands.h); decoding through
+// a padded array of the whole grid must give the same samples, byte for byte:
+// every real volume, streams of one level and of many, a residual layer,
+// every prefix of one stream, and symbols too wide for 16 bits.
+TEST(WaveletGrid, LastLevelBySlicesGivesTheSamplesOfTheWholeArray) {
+  auto same = [](const std::vector<uint8_t>& stream, const std::string& what) {
+    DecodedGrid by_slices, whole;
+    DecodeOptions options;
+    const Error a = decodeGrid(stream.data(), stream.size(), options, &by_slices);
+    options.whole_array_synthesis = true;
+    const Error b = decodeGrid(stream.data(), stream.size(), options, &whole);
+    ASSERT_TRUE(a.ok() && b.ok()) << what << ": " << a.describe() << " / " << b.describe();
+    ASSERT_EQ(by_slices.has_samples, whole.has_samples) << what;
+    ASSERT_TRUE(by_slices.samples == whole.samples) << what;
+  };
+  for (const TestGrid& g : realWindows()) {
+    if (g.header.num_dims != 3) continue;
+    for (int variant = 0; variant < 4; ++variant) {
+      WaveletEncodeOptions options;
+      if (variant == 0) options.bits_per_sample = 1;               // one level, weighted block
+      if (variant == 1) options.bits_per_sample = 0.5, options.progressive = true;
+      if (variant == 2) options.max_error = 2, options.progressive = true;  // residual layer
+      if (variant == 3) options.step = 0.25, options.progressive = true;
+      std::vector<uint8_t> stream;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, nullptr).ok());
+      same(stream, g.name + " variant " + std::to_string(variant));
+      if (variant != 1) continue;
+      for (const ChunkView& chunk : decode(stream).container.chunks)
+        same(std::vector<uint8_t>(stream.begin(), stream.begin() + static_cast<long>(chunk.endOffset())),
+             g.name + " prefix to " + std::to_string(chunk.endOffset()));
+    }
+  }
+  // int32 samples of full range, quantised finely: finest-level symbols far
+  // beyond 2^15, so that those bands are decoded again to their values.
+  GridHeader h;
+  h.num_dims = 3;
+  h.size_x = 23, h.size_y = 19, h.size_z = 17;  // one level along every axis
+  h.sample_type = SampleType::kInt32;
+  std::vector<uint8_t> samples(h.sampleCount() * 4);
+  std::mt19937 rng(31);
+  for (size_t i = 0; i < h.sampleCount(); ++i) {
+    const int32_t v = static_cast<int32_t>(rng());
+    std::memcpy(&samples[4 * i], &v, 4);
+  }
+  WaveletEncodeOptions options;
+  options.step = 1;
+  options.progressive = true;
+  std::vector<uint8_t> stream;
+  ASSERT_TRUE(encodeWaveletGrid(h, samples, Metadata{}, options, &stream, nullptr).ok());
+  same(stream, "int32 noise");
 }
 
 TEST(WaveletGrid, FloatSamplesAndRefusals) {

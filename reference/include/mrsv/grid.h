@@ -98,6 +98,11 @@ struct DecodeOptions {
   // Reduced resolution (spec 5.8.3): stop the synthesis this many levels above
   // the finest; 0 decodes at full resolution.
   int reduce_levels = 0;
+  // Synthesise through a padded array of the whole grid even where the
+  // decoder would take the last level slice by slice (3-D 9/7 grids of
+  // integer samples): the same samples, about twice the memory. The tests
+  // compare the two.
+  bool whole_array_synthesis = false;
 };
 
 // What a file, or a prefix of one, decodes to.

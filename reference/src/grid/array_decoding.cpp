@@ -45,12 +45,19 @@ inline bool decodeNonzero(RangeDecoder& d, ArrayContexts& ctx, int cls, int64_t 
 template <bool B>
 using Flag = std::integral_constant<bool, B>;
 
-}  // namespace
+template <class T>
+T* narrowed(const ArrayDestination& out);
+template <>
+int64_t* narrowed<int64_t>(const ArrayDestination& out) { return out.data; }
+template <>
+int16_t* narrowed<int16_t>(const ArrayDestination& out) { return out.narrow; }
 
 // spec: 5.7.2 blocks in raster order, each with its flag; 5.7.3 the symbols of a
 // flagged block. The walk is that of codeArray() with ArrayPrediction::kNone.
-bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t* skip,
-                            const ArrayDestination& out, uint16_t* magnitudes) {
+// T: int64_t, the values to out.data; int16_t, the symbols to out.narrow.
+template <class T>
+bool decodeArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t* skip,
+                 const ArrayDestination& out, uint16_t* magnitudes) {
   ArrayContexts ctx;
   // A copy in a local, written back at the end: its state can then stay in
   // registers, which a decoder reached through a pointer cannot.
@@ -70,6 +77,8 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
   auto valueOf = [&](int64_t sym, uint64_t mag) {
     return mag <= exact_limit ? sym * signed_step : dequantizeSymbol(sym, step);
   };
+  T* const data = narrowed<T>(out);
+  uint64_t all_magnitudes = 0;  // OR of them: below 2^15 when every symbol fits 16 bits
 
   // The positions [x0, x1) of one row of a flagged block: values to `row`,
   // capped magnitudes to `mag_row`. kUp, kBack: the row has a row above (y >
@@ -77,7 +86,7 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
   // test them. up_right_last: whether the last position's neighbour above to
   // the right (spec 5.7.3) is read. It lies in the next block: decoded when
   // the row is the block's first (y = y0), else not yet, and then 0.
-  auto decodeRow = [&](auto up_flag, auto back_flag, int64_t* row, uint16_t* mag_row,
+  auto decodeRow = [&](auto up_flag, auto back_flag, T* row, uint16_t* mag_row,
                        const uint8_t* skip_row, uint32_t x0, uint32_t x1, bool up_right_last) {
     constexpr bool kUp = decltype(up_flag)::value, kBack = decltype(back_flag)::value;
     const uint16_t* up = kUp ? mag_row - sx : mag_row;
@@ -108,7 +117,12 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
         if (d.bit(&ctx.zero[cls]) != 0 && !decodeNonzero(d, ctx, cls, left, &sym, &mag))
           return false;
       }
-      row[x] = valueOf(sym, mag);
+      if constexpr (sizeof(T) == sizeof(int64_t)) {
+        row[x] = valueOf(sym, mag);
+      } else {
+        row[x] = static_cast<T>(sym);
+        all_magnitudes |= mag;
+      }
       left_mag = cappedMagnitude(mag);
       mag_row[x] = static_cast<uint16_t>(left_mag);
       left = sym;
@@ -118,6 +132,7 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
     return true;
   };
 
+  if (out.narrow_fits) *out.narrow_fits = false;  // until the walk ends
   // One flag per block: those of the block before along x, y and z give the context.
   uint8_t* nonzero = static_cast<uint8_t*>(std::calloc(blocks.total(), 1));
   if (!nonzero) return false;
@@ -132,7 +147,7 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
         nonzero[b] = static_cast<uint8_t>(coded);
         for (uint32_t z = z0; z < z1 && ok; ++z)
           for (uint32_t y = y0; y < y1 && ok; ++y) {
-            int64_t* row = out.data + y * rs + z * ss;
+            T* row = data + y * rs + z * ss;
             uint16_t* mag_row = magnitudes + y * sx + z * sxy;
             if (!coded) {  // every symbol of the block is 0
               std::fill(row + x0, row + x1, 0);
@@ -156,7 +171,16 @@ bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t
       }
   std::free(nonzero);
   *rc = d;
+  if (out.narrow_fits) *out.narrow_fits = all_magnitudes < (uint64_t{1} << 15);
   return ok;
+}
+
+}  // namespace
+
+bool decodeUnpredictedArray(RangeDecoder* rc, const ArrayBox& box, const uint8_t* skip,
+                            const ArrayDestination& out, uint16_t* magnitudes) {
+  return out.narrow ? decodeArray<int16_t>(rc, box, skip, out, magnitudes)
+                    : decodeArray<int64_t>(rc, box, skip, out, magnitudes);
 }
 
 }  // namespace mrsv

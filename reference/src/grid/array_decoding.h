@@ -28,6 +28,15 @@ struct ArrayDestination {
   // 0: each value is its symbol (mask, residual). Otherwise a band's step: the
   // value is the symbol dequantised (spec 5.4), dequantizeSymbol().
   uint64_t step = 0;
+  // When not null, the symbols themselves go to `narrow` instead, as 16-bit
+  // values at the same strides (`data` and `step` are not used), and
+  // *narrow_fits says whether every one of them fits (|symbol| < 2^15). When
+  // one does not, what is stored for it is unspecified, and so is everything
+  // decoded after it, the result included: the contexts read the stored
+  // signs. The caller then decodes the array again into `data`. Half the memory of a
+  // band, for a caller that dequantises later.
+  int16_t* narrow = nullptr;
+  bool* narrow_fits = nullptr;
 };
 
 // spec: 5.4 q * step, computed exactly and saturated to +-kValueLimit; step > 0.

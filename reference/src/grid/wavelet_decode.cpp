@@ -16,6 +16,7 @@
 #include "grid/array_decoding.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
+#include "grid/last_level_bands.h"
 #include "grid/sample_runs.h"
 #include "grid/weighted_array_coding.h"
 #include "wavelet/axis_plan.h"
@@ -99,9 +100,15 @@ struct WaveletState {
   bool seen_residual = false;
   wavelet::GridPlan plan;
   std::vector<wavelet::Band> bands;
-  // The padded array in the Mallat layout; null until a band has coded data.
-  // Not zeroed when allocated: each band's box is written when the band is read
-  // (step 0: zeros) and the boxes of bands not read are zeroed before synthesis.
+  // With last_level, the grid's last level is synthesised slice by slice and
+  // its bands are kept there; `coefficients` then holds the other bands, and
+  // array_plan is the last level's upper plan instead of `plan`.
+  std::unique_ptr<LastLevelBands> last_level;
+  wavelet::GridPlan array_plan;
+  // The padded array of array_plan in the Mallat layout; null until a band has
+  // coded data. Not zeroed when allocated: each band's box is written when the
+  // band is read (step 0: zeros) and the boxes of bands not read are zeroed
+  // before synthesis.
   LargeArray<int64_t> coefficients;
   std::vector<uint8_t> band_written;  // per band of the plan
   std::vector<int64_t> band_values;   // scratch for bands not decoded in place
@@ -126,6 +133,17 @@ Error checkMemory(uint64_t bytes, const DecodeOptions& options, const ChunkView&
     return Error{Status::kResourceLimit, chunk.offset, chunk.chunk_type.str(),
                  "decoding needs " + std::to_string(bytes) + " bytes, above the decoder's limit of " +
                      std::to_string(options.max_output_bytes)};
+  return {};
+}
+
+// The padded array of s->array_plan, once. The limit is checked against the
+// whole plan's array either way, so that whether a stream is within it does
+// not depend on how the decoder arranges its work.
+Error allocateCoefficients(const DecodeOptions& options, const ChunkView& chunk, WaveletState* s) {
+  if (s->coefficients) return {};
+  if (Error e = checkMemory(s->plan.paddedCount() * 16, options, chunk); !e.ok()) return e;
+  s->coefficients = makeLargeArray<int64_t>(s->array_plan.paddedCount());
+  if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
   return {};
 }
 
@@ -184,12 +202,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     if (coded_size != 0) return fail(4, "step", "a band with step 0 has no coded data");
     return {};  // all coefficients of the band are zero (written before synthesis)
   }
-  if (!s->coefficients) {
-    uint64_t padded = s->plan.paddedCount();
-    if (Error e = checkMemory(padded * 16, options, chunk); !e.ok()) return e;
-    s->coefficients = makeLargeArray<int64_t>(padded);
-    if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
-  }
+  if (Error e = allocateCoefficients(options, chunk, s); !e.ok()) return e;
   const wavelet::Band& band = s->bands[index];
   ArrayBox box;
   box.num_dims = s->plan.num_dims;
@@ -200,17 +213,33 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     const uint64_t state = uint64_t{box.size[0]} * WeightedPredictor::kBytesPerColumn;
     if (Error e = checkMemory(s->plan.paddedCount() * 16 + state, options, chunk); !e.ok()) return e;
   }
-  // The band's box in the padded array (the Mallat layout).
-  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
-  const ArrayDestination place{s->coefficients.get() + band.offset[0] + band.offset[1] * px +
-                                   band.offset[2] * pxy,
-                               px, pxy};
   // A range-coded band without prediction (every detail band) is decoded in
   // place and dequantised there. The others are decoded to scratch kept from
   // band to band (array() writes every entry, so it is not cleared), then
   // dequantised into place (spec 5.4).
   const bool in_place =
       s->header.entropy_mode != kEntropyBaseline && prediction == ArrayPrediction::kNone;
+  // The band's box: in the padded array (the Mallat layout), or a box of its
+  // own for a band of the last level kept apart.
+  const bool apart = s->last_level && band.level == 1 && band.mask != 0;
+  ArrayDestination place;
+  bool narrow_fits = false;
+  if (apart) {
+    // Symbols in 16 bits when decoded in place; should one not fit, the band
+    // is decoded again below, to its values.
+    place = contiguous(nullptr, box);
+    if (in_place) {
+      place.narrow = s->last_level->narrow(band.mask, box.count(), step);
+      place.narrow_fits = &narrow_fits;
+    } else {
+      place.data = s->last_level->wide(band.mask, box.count());
+    }
+    if (!place.narrow && !place.data) return checkMemory(UINT64_MAX, options, chunk);
+  } else {
+    const uint64_t px = s->array_plan.axis[0].size(0), pxy = px * s->array_plan.axis[1].size(0);
+    place = {s->coefficients.get() + band.offset[0] + band.offset[1] * px + band.offset[2] * pxy,
+             px, pxy};
+  }
   try {
     if (in_place && s->band_magnitudes.size() < box.count())
       s->band_magnitudes.resize(box.count());
@@ -220,15 +249,21 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   } catch (const std::bad_alloc&) {
     return checkMemory(UINT64_MAX, options, chunk);
   }
-  const ArrayDestination decoded =
-      in_place ? ArrayDestination{place.data, place.row_stride, place.slice_stride, step}
-               : contiguous(s->band_values.data(), box);
-  if (Error e = decodeArrayPayload(s->header.entropy_mode, coded, coded_size,
-                                   chunk.payloadOffset() + kBandHeaderSize, "GBND", box, prediction,
-                                   nullptr, decoded, s->band_symbols.data(),
-                                   s->band_magnitudes.data());
-      !e.ok())
-    return e;
+  ArrayDestination decoded = in_place ? place : contiguous(s->band_values.data(), box);
+  decoded.step = in_place ? step : 0;
+  auto decode = [&] {
+    return decodeArrayPayload(s->header.entropy_mode, coded, coded_size,
+                              chunk.payloadOffset() + kBandHeaderSize, "GBND", box, prediction,
+                              nullptr, decoded, s->band_symbols.data(), s->band_magnitudes.data());
+  };
+  Error e = decode();
+  if (decoded.narrow && !narrow_fits) {  // rare: symbols of 2^15 and more
+    decoded = contiguous(s->last_level->wide(band.mask, box.count()), box);
+    if (!decoded.data) return checkMemory(UINT64_MAX, options, chunk);
+    decoded.step = step;
+    e = decode();
+  }
+  if (!e.ok()) return e;
   if (!in_place)
     for (uint32_t z = 0; z < box.size[2]; ++z)
       for (uint32_t y = 0; y < box.size[1]; ++y)
@@ -381,6 +416,11 @@ void synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
   IntegerSamples<T> mapping(*s, samples);
   if (wavelet::isCdf97(s->plan.axis[0].order)) {
     const wavelet::SynthesisRows rows{&IntegerSamples<T>::fromSynthesis, &mapping};
+    if (s->last_level) {  // see last_level_bands.h
+      wavelet::synthesizeFixedCdf97(s->array_plan, s->coefficients.get(), 0);
+      wavelet::synthesizeLastLevelCdf97(s->plan, s->last_level->rows(s->coefficients.get()), rows);
+      return;
+    }
     if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows)) return;
   } else {
     wavelet::synthesizeFixed(s->plan, s->coefficients.get(), 0);
@@ -394,17 +434,14 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   const GridHeader& g = *s->grid;
   const int stop = options.reduce_levels < s->plan.maxLevels() ? options.reduce_levels
                                                                 : s->plan.maxLevels();
-  if (!s->coefficients) {  // every band so far had step 0
-    uint64_t padded = s->plan.paddedCount();
-    if (Error e = checkMemory(padded * 16, options, last); !e.ok()) return e;
-    s->coefficients = makeLargeArray<int64_t>(padded);
-    if (!s->coefficients) return checkMemory(UINT64_MAX, options, last);
-  }
-  // The bands with step 0 and those not (yet) in the stream are zero.
-  const uint64_t px = s->plan.axis[0].size(0), pxy = px * s->plan.axis[1].size(0);
+  // (None yet when every band so far had step 0.)
+  if (Error e = allocateCoefficients(options, last, s); !e.ok()) return e;
+  // The bands with step 0 and those not (yet) in the stream are zero (those
+  // of a last level kept apart are when not stored).
+  const uint64_t px = s->array_plan.axis[0].size(0), pxy = px * s->array_plan.axis[1].size(0);
   for (size_t b = 0; b < s->bands.size(); ++b) {
-    if (s->band_written[b]) continue;
     const wavelet::Band& band = s->bands[b];
+    if (s->band_written[b] || (s->last_level && band.level == 1 && band.mask != 0)) continue;
     for (uint32_t z = 0; z < band.size[2]; ++z)
       for (uint32_t y = 0; y < band.size[1]; ++y) {
         int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
@@ -504,6 +541,12 @@ Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out) {
       const int levels[3] = {s.header.levels[0], s.header.levels[1], s.header.levels[2]};
       wavelet::makeGridPlan(out->header.num_dims, samples, s.header.order, levels, &s.plan);
       s.bands = wavelet::bandsOf(s.plan);
+      // The last level slice by slice: only for what synthesizeIntegerSamples() makes.
+      const SampleType type = out->header.sample_type;
+      if (options.reduce_levels == 0 && !options.whole_array_synthesis &&
+          type != SampleType::kFloat32 && type != SampleType::kFloat64)
+        s.last_level = LastLevelBands::make(s.plan);
+      s.array_plan = s.last_level ? s.last_level->upperPlan() : s.plan;
       s.band_written.assign(s.bands.size(), 0);
       out->bands_total = static_cast<uint32_t>(s.bands.size());
       continue;

@@ -46,6 +46,28 @@ struct SynthesisRows {
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
                           const SynthesisRows& rows);
 
+// The values of level 1 in the Mallat layout (the low-pass block of level 1
+// and the detail bands of level 1), given a row at a time: row(context, y, z,
+// values) writes the size(0) values of row (y, z) along x of the padded array
+// as synthesizeFixedCdf97() would find them there after synthesising every
+// level above 1 (any int64: they are saturated as they are read).
+struct MallatRows {
+  void (*row)(void* context, size_t y, size_t z, int64_t* values);
+  void* context;
+};
+
+// spec: 4.11.3 the last level, 1, of a 3-D plan split along all three axes
+// at level 1, read from `input` rather than from a padded array, its results
+// going to `rows` (each position once, in some order): the values the last
+// pass of synthesizeFixedCdf97(plan, data, 0, rows) hands out. It needs no
+// padded array, only a few slices in flight (about 10 * size_x * size_y
+// values). Returns false, calling neither, when the plan is not such a plan
+// (then the caller synthesises a padded array): when
+// !lastLevelBySlicesCdf97(plan).
+bool lastLevelBySlicesCdf97(const GridPlan& plan);
+bool synthesizeLastLevelCdf97(const GridPlan& plan, const MallatRows& input,
+                              const SynthesisRows& rows);
+
 // Real-valued analysis and synthesis of one level along one axis (informative,
 // the encoder's; transform_float.cpp walks the levels and axes): the exact
 // inverse pair that 4.11.3 rounds, over a batch of `width` interleaved lines

@@ -229,6 +229,69 @@ bool synthesize(const GridPlan& plan, int64_t* data, int stop_level, const Cdf97
   return emitted;
 }
 
+// The z pass of synthesizeAcross() turned into a stream over slices: stage t
+// of its sweep needs low row t and high row t, which here are whole slices
+// (z = t and z = h + t of the Mallat layout) synthesised along x and y just
+// before, and finishes slices 2(t - 2) and 2(t - 2) + 1. The rows of a stage
+// are one batch of lines along z as wide as a slice; the steps go over it a
+// band of y rows at a time, so that the few rows a band touches stay in the
+// first-level cache. A slice is needed from stage t to stage t + 2, so four
+// slots of each parity suffice (the mirrored ends only ever name the slice
+// next to the end, which is still held).
+bool synthesizeLastLevel(const GridPlan& plan, const MallatRows& input, const Cdf97Kernels& k,
+                         const SynthesisRows& rows) {
+  if (!lastLevelBySlicesCdf97(plan)) return false;
+  const size_t nx = plan.axis[0].size(0), ny = plan.axis[1].size(0), nz = plan.axis[2].size(0);
+  const size_t h = (nz + 1) / 2, g = nz - h;  // 4.11.1
+  const size_t plane = nx * ny;
+  constexpr size_t kSlots = 4;
+  Scratch scratch;
+  std::vector<int64_t> slice(plane), low_slots(kSlots * plane), high_slots(kSlots * plane);
+  auto low = [&](size_t i) { return low_slots.data() + (i < h ? i : h - 1) % kSlots * plane; };
+  auto high = [&](ptrdiff_t i) {
+    const size_t r = i < 0 ? 0 : static_cast<size_t>(i) < g ? static_cast<size_t>(i) : g - 1;
+    return high_slots.data() + r % kSlots * plane;
+  };
+  // Slice z of the Mallat layout synthesised along x, then along y (4.11.3, as
+  // synthesize() does slice by slice), then read for the pass along z: scaled
+  // when it is a low row, saturated when a high one, into `to`.
+  auto prepare = [&](size_t z, bool low_row, int64_t* to) {
+    for (size_t y = 0; y < ny; ++y) {
+      int64_t* line = slice.data() + y * nx;
+      input.row(input.context, y, z, line);
+      synthesizeAlong(k, line, nx, &scratch);
+    }
+    for (size_t x = 0, bw = batchWidth(ny, nx); x < nx; x += bw) {
+      const size_t width = std::min(bw, nx - x);
+      synthesizeAcross(k, slice.data() + x, nx, ny, width, &scratch,
+                       [&](size_t y, const int64_t* row) {
+                         int64_t* dst = to + y * nx + x;
+                         if (low_row) k.scale(row, dst, width);
+                         else k.saturate(row, dst, width);
+                       });
+    }
+  };
+  const size_t band_rows = std::max<size_t>(1, 4096 / nx);
+  for (size_t t = 0; t < h + 2; ++t) {
+    const ptrdiff_t i = static_cast<ptrdiff_t>(t);
+    if (t < h) prepare(t, true, low(t));
+    if (t < g) prepare(h + t, false, high(i));
+    for (size_t y0 = 0; y0 < ny; y0 += band_rows) {
+      const size_t y1 = std::min(ny, y0 + band_rows), o = y0 * nx, n = (y1 - y0) * nx;
+      if (t < h) k.lift(low(t) + o, high(i - 1) + o, high(i) + o, n, kCdf97Delta);
+      if (t >= 1 && t - 1 < g) k.lift(high(i - 1) + o, low(t - 1) + o, low(t) + o, n, kCdf97Gamma);
+      if (t >= 1 && t - 1 < h) k.lift(low(t - 1) + o, high(i - 2) + o, high(i - 1) + o, n, kCdf97Beta);
+      if (t >= 2 && t - 2 < g) k.lift(high(i - 2) + o, low(t - 2) + o, low(t - 1) + o, n, kCdf97Alpha);
+      for (size_t y = y0; y < y1; ++y) {
+        if (t >= 2 && t - 2 < h) rows.row(rows.context, 0, y, 2 * (t - 2), low(t - 2) + y * nx, nx);
+        if (t >= 2 && t - 2 < g)
+          rows.row(rows.context, 0, y, 2 * (t - 2) + 1, high(i - 2) + y * nx, nx);
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
@@ -248,6 +311,23 @@ bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
                           const SynthesisRows& rows, const Cdf97Kernels& kernels) {
   return synthesize(plan, data, stop_level, kernels, &rows);
+}
+
+bool lastLevelBySlicesCdf97(const GridPlan& plan) {
+  if (!isValidGridPlan(plan) || plan.num_dims != 3) return false;
+  for (const AxisPlan& axis : plan.axis)
+    if (axis.levels < 1 || !isCdf97(axis.order)) return false;
+  return plan.axis[2].size(0) >= 2;  // a high row along z (4.11.1: g >= 1)
+}
+
+bool synthesizeLastLevelCdf97(const GridPlan& plan, const MallatRows& input,
+                              const SynthesisRows& rows, const Cdf97Kernels& kernels) {
+  return synthesizeLastLevel(plan, input, kernels, rows);
+}
+
+bool synthesizeLastLevelCdf97(const GridPlan& plan, const MallatRows& input,
+                              const SynthesisRows& rows) {
+  return synthesizeLastLevel(plan, input, cdf97Kernels(), rows);
 }
 
 }  // namespace mrsv::wavelet

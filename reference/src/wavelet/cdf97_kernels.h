@@ -59,4 +59,7 @@ void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
                           const SynthesisRows& rows, const Cdf97Kernels& kernels);
 
+bool synthesizeLastLevelCdf97(const GridPlan& plan, const MallatRows& input,
+                              const SynthesisRows& rows, const Cdf97Kernels& kernels);
+
 }  // namespace mrsv::wavelet
