@@ -214,9 +214,10 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     if (Error e = checkMemory(s->plan.paddedCount() * 16 + state, options, chunk); !e.ok()) return e;
   }
   // A range-coded band without prediction (every detail band) is decoded in
-  // place and dequantised there. The others are decoded to scratch kept from
-  // band to band (array() writes every entry, so it is not cleared), then
-  // dequantised into place (spec 5.4).
+  // place and dequantised there. The others are decoded to their symbols,
+  // then dequantised into place (spec 5.4): in place too when the place is
+  // contiguous (the band fills its array), else through scratch kept from band
+  // to band (array() writes every entry, so it is not cleared).
   const bool in_place =
       s->header.entropy_mode != kEntropyBaseline && prediction == ArrayPrediction::kNone;
   // The band's box: in the padded array (the Mallat layout), or a box of its
@@ -240,16 +241,24 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     place = {s->coefficients.get() + band.offset[0] + band.offset[1] * px + band.offset[2] * pxy,
              px, pxy};
   }
+  const bool symbols_in_place = place.row_stride == box.size[0] &&
+                                place.slice_stride == size_t{box.size[0]} * box.size[1];
+  // The weighted predictor's contexts read two rows of symbols (5.7.5),
+  // neighbour prediction's the whole array (5.7.4).
+  const uint64_t symbol_scratch = prediction == ArrayPrediction::kWeighted ? 2 * uint64_t{box.size[0]}
+                                  : prediction == ArrayPrediction::kNone   ? 0
+                                                                           : box.count();
   try {
     if (in_place && s->band_magnitudes.size() < box.count())
       s->band_magnitudes.resize(box.count());
-    if (!in_place && s->band_values.size() < box.count()) s->band_values.resize(box.count());
-    if (prediction != ArrayPrediction::kNone && s->band_symbols.size() < box.count())
-      s->band_symbols.resize(box.count());
+    if (!in_place && !symbols_in_place && s->band_values.size() < box.count())
+      s->band_values.resize(box.count());
+    if (s->band_symbols.size() < symbol_scratch) s->band_symbols.resize(symbol_scratch);
   } catch (const std::bad_alloc&) {
     return checkMemory(UINT64_MAX, options, chunk);
   }
-  ArrayDestination decoded = in_place ? place : contiguous(s->band_values.data(), box);
+  ArrayDestination decoded =
+      in_place || symbols_in_place ? place : contiguous(s->band_values.data(), box);
   decoded.step = in_place ? step : 0;
   auto decode = [&] {
     return decodeArrayPayload(s->header.entropy_mode, coded, coded_size,

@@ -85,8 +85,9 @@ bool codeWeightedSymbol(Coder& coder, WeightedContexts& ctx, int k, int t, int64
 }
 
 // spec: 5.7.5 codes every value of `values` over `box` in raster order, slice
-// by slice; `symbols` is scratch of box.count() entries. Returns false on a
-// decoding error or when memory runs out.
+// by slice; `symbols` is scratch of 2 * box.size[0] entries (the contexts read
+// the symbols of the row and of the row above). Returns false on a decoding
+// error or when memory runs out.
 template <class Coder>
 bool codeWeightedArray(Coder& coder, int64_t* values, int64_t* symbols, const ArrayBox& box) {
   WeightedContexts ctx;
@@ -96,12 +97,11 @@ bool codeWeightedArray(Coder& coder, int64_t* values, int64_t* symbols, const Ar
   const size_t sx = size_x, sxy = size_t{size_x} * box.size[1];
   for (uint32_t z = 0; z < box.size[2]; ++z)
     for (uint32_t y = 0; y < box.size[1]; ++y) {
-      const size_t start = y * sx + z * sxy;
-      int64_t* row = values + start;
-      int64_t* sym_row = symbols + start;
+      int64_t* row = values + y * sx + z * sxy;
+      int64_t* sym_row = symbols + (y & 1) * sx;
       const int64_t* up = y > 0 ? row - sx : nullptr;
       const int64_t* up2 = y > 1 ? row - 2 * sx : nullptr;
-      const int64_t* sym_up = y > 0 ? sym_row - sx : nullptr;
+      const int64_t* sym_up = y > 0 ? symbols + ((y - 1) & 1) * sx : nullptr;
       for (uint32_t x = 0; x < size_x; ++x) {
         // a = 2|l| + 2|u| + |ul| + |ur| over the slice's residuals.
         uint64_t a = 0;
