@@ -227,6 +227,24 @@ def build(g):
             "5.7.3", "a 1-D int32 line of values up to 2^30, lossless with neighbour prediction: escapes "
             "with more than 11 prefix bits and more than 24 bits below the leading one",
             expected=canonical("int32", [300], wide_bytes))
+    # A 3-D int32 block of full-range noise, quantised with step 1: symbols of the last
+    # level far beyond 16 bits (a decoder that keeps them narrower must widen them).
+    noise, x = [], 2024
+    for _ in range(23 * 19 * 17):
+        x = (x * 1103515245 + 12345) % (1 << 31)
+        noise.append(x * 2 - (1 << 31))
+    g.valid("volume_int32_noise_step1",
+            g.encode(struct.pack("<%di" % len(noise), *noise), "int32", [23, 19, 17],
+                     ["--progressive", "--step", "1"]),
+            "4.11, 5.4", "3-D int32 noise of full range, CDF 9/7 with step 1: symbols up to about 2^31 "
+            "in the bands of level 1")
+    # One level, its coarse block (the whole low-pass block of level 1) with weighted
+    # prediction: what the encoder's defaults pick for large CT volumes at 1 bit per sample.
+    g.valid("volume_cdf97_one_level_weighted",
+            g.encode(head, "uint8", h3, ["--progressive", "--levels", "1", "--prediction", "weighted",
+                                         "--bits-per-sample", "1.5"]),
+            "4.11, 5.7.5", "a CT block (3-D uint8), CDF 9/7, one level whose coarse block uses weighted "
+            "prediction, about 1.5 bits per sample")
     vals = struct.unpack("<%dh" % (len(helens) // 2), helens)
     floats = struct.pack("<%df" % len(vals), *[v * 0.3048 + 0.125 for v in vals])
     g.valid("terrain_float32_psnr", g.encode(floats, "float32", h2, ["--psnr", "70"]), "5.8.2",
