@@ -60,7 +60,7 @@ struct MallatRows {
 // at level 1, read from `input` rather than from a padded array, its results
 // going to `rows` (each position once, in some order): the values the last
 // pass of synthesizeFixedCdf97(plan, data, 0, rows) hands out. It needs no
-// padded array, only a few slices in flight (about 10 * size_x * size_y
+// padded array, only a few slices in flight (at most 9 of size_x * size_y
 // values). Returns false, calling neither, when the plan is not such a plan
 // (then the caller synthesises a padded array): when
 // !lastLevelBySlicesCdf97(plan).

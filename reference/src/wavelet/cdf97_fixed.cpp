@@ -237,20 +237,21 @@ bool synthesize(const GridPlan& plan, int64_t* data, int stop_level, const Cdf97
 // band of y rows at a time, so that the few rows a band touches stay in the
 // first-level cache. A slice is needed from stage t to stage t + 2, so four
 // slots of each parity suffice (the mirrored ends only ever name the slice
-// next to the end, which is still held).
+// next to the end, which is still held), or one per slice when there are
+// fewer.
 bool synthesizeLastLevel(const GridPlan& plan, const MallatRows& input, const Cdf97Kernels& k,
                          const SynthesisRows& rows) {
   if (!lastLevelBySlicesCdf97(plan)) return false;
   const size_t nx = plan.axis[0].size(0), ny = plan.axis[1].size(0), nz = plan.axis[2].size(0);
   const size_t h = (nz + 1) / 2, g = nz - h;  // 4.11.1
   const size_t plane = nx * ny;
-  constexpr size_t kSlots = 4;
+  const size_t low_count = std::min<size_t>(4, h), high_count = std::min<size_t>(4, g);
   Scratch scratch;
-  std::vector<int64_t> slice(plane), low_slots(kSlots * plane), high_slots(kSlots * plane);
-  auto low = [&](size_t i) { return low_slots.data() + (i < h ? i : h - 1) % kSlots * plane; };
+  std::vector<int64_t> slice(plane), low_slots(low_count * plane), high_slots(high_count * plane);
+  auto low = [&](size_t i) { return low_slots.data() + (i < h ? i : h - 1) % low_count * plane; };
   auto high = [&](ptrdiff_t i) {
     const size_t r = i < 0 ? 0 : static_cast<size_t>(i) < g ? static_cast<size_t>(i) : g - 1;
-    return high_slots.data() + r % kSlots * plane;
+    return high_slots.data() + r % high_count * plane;
   };
   // Slice z of the Mallat layout synthesised along x, then along y (4.11.3, as
   // synthesize() does slice by slice), then read for the pass along z: scaled
