@@ -33,8 +33,8 @@ struct ArrayDestination {
   // *narrow_fits says whether every one of them fits (|symbol| < 2^15). When
   // one does not, what is stored for it is unspecified, and so is everything
   // decoded after it, the result included: the contexts read the stored
-  // signs. The caller then decodes the array again into `data`. Half the memory of a
-  // band, for a caller that dequantises later.
+  // signs; the caller then decodes the array again, into int64 values. Half
+  // the memory of a band, for a caller that dequantises later.
   int16_t* narrow = nullptr;
   bool* narrow_fits = nullptr;
 };

@@ -6,7 +6,9 @@
 namespace mrsv {
 
 std::unique_ptr<LastLevelBands> LastLevelBands::make(const wavelet::GridPlan& plan) {
-  if (!wavelet::lastLevelBySlicesCdf97(plan)) return nullptr;
+  // Up to nine slices are in flight (cdf97.h): a thinner grid needs less
+  // memory as one padded array.
+  if (!wavelet::lastLevelBySlicesCdf97(plan) || plan.axis[2].size(0) < kMinDepth) return nullptr;
   auto store = std::unique_ptr<LastLevelBands>(new LastLevelBands);
   uint32_t samples[3];
   int levels[3];

@@ -34,7 +34,9 @@ class LastLevelBands {
  public:
   // The storage for `plan`, or null when synthesizeLastLevelCdf97() does not
   // take the plan (then the whole padded array is synthesised).
+  // The grid must be at least kMinDepth samples deep.
   static std::unique_ptr<LastLevelBands> make(const wavelet::GridPlan& plan);
+  static constexpr uint32_t kMinDepth = 16;
 
   // The plan of the levels above 1, whose padded array holds every band of
   // level 2 and above at its offsets in the whole plan.

@@ -56,7 +56,8 @@ int64_t roundShift(int64_t v, int w) {
 // every coded symbol) go straight to `out`, which may be strided and dequantise
 // (out.step), with `magnitudes` as scratch of box.count() entries. The others
 // need a contiguous `out` with step 0 (row_stride = X, slice_stride = X * Y)
-// and, with prediction, `symbols`: scratch of box.count() entries.
+// and, with prediction, `symbols`: scratch of box.count() entries (neighbour
+// prediction) or 2 * X (weighted prediction).
 Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t size,
                          uint64_t payload_offset, const char* field, const ArrayBox& box,
                          ArrayPrediction prediction, const uint8_t* skip,
@@ -128,7 +129,12 @@ ArrayBox gridBox(const GridHeader& g) {
   return box;
 }
 
+// (bytes = kUnavailable: memory within the limit that the system refused.)
+constexpr uint64_t kUnavailable = UINT64_MAX;
 Error checkMemory(uint64_t bytes, const DecodeOptions& options, const ChunkView& chunk) {
+  if (bytes == kUnavailable)
+    return Error{Status::kResourceLimit, chunk.offset, chunk.chunk_type.str(),
+                 "the memory for decoding could not be allocated"};
   if (bytes > options.max_output_bytes)
     return Error{Status::kResourceLimit, chunk.offset, chunk.chunk_type.str(),
                  "decoding needs " + std::to_string(bytes) + " bytes, above the decoder's limit of " +
@@ -143,7 +149,7 @@ Error allocateCoefficients(const DecodeOptions& options, const ChunkView& chunk,
   if (s->coefficients) return {};
   if (Error e = checkMemory(s->plan.paddedCount() * 16, options, chunk); !e.ok()) return e;
   s->coefficients = makeLargeArray<int64_t>(s->array_plan.paddedCount());
-  if (!s->coefficients) return checkMemory(UINT64_MAX, options, chunk);
+  if (!s->coefficients) return checkMemory(kUnavailable, options, chunk);
   return {};
 }
 
@@ -235,7 +241,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
     } else {
       place.data = s->last_level->wide(band.mask, box.count());
     }
-    if (!place.narrow && !place.data) return checkMemory(UINT64_MAX, options, chunk);
+    if (!place.narrow && !place.data) return checkMemory(kUnavailable, options, chunk);
   } else {
     const uint64_t px = s->array_plan.axis[0].size(0), pxy = px * s->array_plan.axis[1].size(0);
     place = {s->coefficients.get() + band.offset[0] + band.offset[1] * px + band.offset[2] * pxy,
@@ -255,7 +261,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
       s->band_values.resize(box.count());
     if (s->band_symbols.size() < symbol_scratch) s->band_symbols.resize(symbol_scratch);
   } catch (const std::bad_alloc&) {
-    return checkMemory(UINT64_MAX, options, chunk);
+    return checkMemory(kUnavailable, options, chunk);
   }
   ArrayDestination decoded =
       in_place || symbols_in_place ? place : contiguous(s->band_values.data(), box);
@@ -268,7 +274,7 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   Error e = decode();
   if (decoded.narrow && !narrow_fits) {  // rare: symbols of 2^15 and more
     decoded = contiguous(s->last_level->wide(band.mask, box.count()), box);
-    if (!decoded.data) return checkMemory(UINT64_MAX, options, chunk);
+    if (!decoded.data) return checkMemory(kUnavailable, options, chunk);
     decoded.step = step;
     e = decode();
   }
@@ -420,21 +426,24 @@ struct IntegerSamples {
 // 9/7 synthesis hands the rows of its last pass straight to the sample
 // mapping when it can (instead of writing them to the padded array and
 // reading them back): the same values, one trip through memory fewer.
+// False only when the few slices of the last level (last_level_bands.h)
+// cannot be allocated.
 template <class T>
-void synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
+bool synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
   IntegerSamples<T> mapping(*s, samples);
   if (wavelet::isCdf97(s->plan.axis[0].order)) {
     const wavelet::SynthesisRows rows{&IntegerSamples<T>::fromSynthesis, &mapping};
-    if (s->last_level) {  // see last_level_bands.h
+    if (s->last_level) {  // see last_level_bands.h; the plan was checked when it was made
       wavelet::synthesizeFixedCdf97(s->array_plan, s->coefficients.get(), 0);
-      wavelet::synthesizeLastLevelCdf97(s->plan, s->last_level->rows(s->coefficients.get()), rows);
-      return;
+      return wavelet::synthesizeLastLevelCdf97(s->plan, s->last_level->rows(s->coefficients.get()),
+                                               rows);
     }
-    if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows)) return;
+    if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows)) return true;
   } else {
     wavelet::synthesizeFixed(s->plan, s->coefficients.get(), 0);
   }
   mapping.all(*s);
+  return true;
 }
 
 // spec: 5.8 synthesis and output mapping.
@@ -486,14 +495,20 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   const bool full = stop == 0;
   if (full) {
     uint8_t* samples = out->samples.data();
+    bool made;
     switch (g.sample_type) {
-      case SampleType::kUint8: synthesizeIntegerSamples<uint8_t>(s, samples); return {};
-      case SampleType::kInt16: synthesizeIntegerSamples<int16_t>(s, samples); return {};
-      case SampleType::kUint16: synthesizeIntegerSamples<uint16_t>(s, samples); return {};
-      case SampleType::kInt32: synthesizeIntegerSamples<int32_t>(s, samples); return {};
-      default: break;
+      case SampleType::kUint8: made = synthesizeIntegerSamples<uint8_t>(s, samples); break;
+      case SampleType::kInt16: made = synthesizeIntegerSamples<int16_t>(s, samples); break;
+      case SampleType::kUint16: made = synthesizeIntegerSamples<uint16_t>(s, samples); break;
+      case SampleType::kInt32: made = synthesizeIntegerSamples<int32_t>(s, samples); break;
+      default: made = false; break;
     }
+    if (g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64)
+      return made ? Error{} : checkMemory(kUnavailable, options, last);
   }
+  // Only grids without a last level apart get here (last_level is made only
+  // for full-resolution integer samples, all returned above): `coefficients`
+  // is the padded array of the whole plan.
   wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
   // Floating-point samples, and reduced resolution: one sample at a time.
   const int w = s->header.frac_bits;

@@ -63,7 +63,8 @@ struct MallatRows {
 // padded array, only a few slices in flight (at most 9 of size_x * size_y
 // values). Returns false, calling neither, when the plan is not such a plan
 // (then the caller synthesises a padded array): when
-// !lastLevelBySlicesCdf97(plan).
+// !lastLevelBySlicesCdf97(plan); or when the memory for those slices cannot
+// be had.
 bool lastLevelBySlicesCdf97(const GridPlan& plan);
 bool synthesizeLastLevelCdf97(const GridPlan& plan, const MallatRows& input,
                               const SynthesisRows& rows);

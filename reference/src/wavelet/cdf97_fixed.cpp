@@ -34,6 +34,7 @@
 #include <cstring>
 #include <vector>
 
+#include "common/large_array.h"
 #include "wavelet/cdf97.h"
 #include "wavelet/cdf97_kernels.h"
 #include "wavelet/synthesis_fixed.h"
@@ -246,25 +247,29 @@ bool synthesizeLastLevel(const GridPlan& plan, const MallatRows& input, const Cd
   const size_t h = (nz + 1) / 2, g = nz - h;  // 4.11.1
   const size_t plane = nx * ny;
   const size_t low_count = std::min<size_t>(4, h), high_count = std::min<size_t>(4, g);
+  // Large for large slices, and a decoder must not throw: null when refused.
+  const LargeArray<int64_t> slice = makeLargeArray<int64_t>(plane),
+                            low_slots = makeLargeArray<int64_t>(uint64_t{low_count} * plane),
+                            high_slots = makeLargeArray<int64_t>(uint64_t{high_count} * plane);
+  if (!slice || !low_slots || !high_slots) return false;
   Scratch scratch;
-  std::vector<int64_t> slice(plane), low_slots(low_count * plane), high_slots(high_count * plane);
-  auto low = [&](size_t i) { return low_slots.data() + (i < h ? i : h - 1) % low_count * plane; };
+  auto low = [&](size_t i) { return low_slots.get() + (i < h ? i : h - 1) % low_count * plane; };
   auto high = [&](ptrdiff_t i) {
     const size_t r = i < 0 ? 0 : static_cast<size_t>(i) < g ? static_cast<size_t>(i) : g - 1;
-    return high_slots.data() + r % high_count * plane;
+    return high_slots.get() + r % high_count * plane;
   };
   // Slice z of the Mallat layout synthesised along x, then along y (4.11.3, as
   // synthesize() does slice by slice), then read for the pass along z: scaled
   // when it is a low row, saturated when a high one, into `to`.
   auto prepare = [&](size_t z, bool low_row, int64_t* to) {
     for (size_t y = 0; y < ny; ++y) {
-      int64_t* line = slice.data() + y * nx;
+      int64_t* line = slice.get() + y * nx;
       input.row(input.context, y, z, line);
       synthesizeAlong(k, line, nx, &scratch);
     }
     for (size_t x = 0, bw = batchWidth(ny, nx); x < nx; x += bw) {
       const size_t width = std::min(bw, nx - x);
-      synthesizeAcross(k, slice.data() + x, nx, ny, width, &scratch,
+      synthesizeAcross(k, slice.get() + x, nx, ny, width, &scratch,
                        [&](size_t y, const int64_t* row) {
                          int64_t* dst = to + y * nx + x;
                          if (low_row) k.scale(row, dst, width);
