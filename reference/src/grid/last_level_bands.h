@@ -17,7 +17,7 @@
 //   they are read), or else as its values;
 // - level 1 is then synthesised from rows assembled from the two, a few slices
 //   at a time, straight into the sample mapping.
-// A 256^3 volume then decodes in about 70 MiB instead of 155.
+// A 256^3 volume then decodes in about 77 MB (peak resident) instead of 158.
 #pragma once
 
 #include <cstddef>
