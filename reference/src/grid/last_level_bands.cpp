@@ -25,11 +25,12 @@ std::unique_ptr<LastLevelBands> LastLevelBands::make(const wavelet::GridPlan& pl
   // be, the whole padded array is used instead.
   const std::vector<wavelet::Band> whole = wavelet::bandsOf(plan), upper = wavelet::bandsOf(store->upper_);
   if (upper.size() + 7 != whole.size()) return nullptr;
-  for (size_t b = 0; b < upper.size(); ++b)
+  for (size_t b = 0; b < upper.size(); ++b) {
+    if (upper[b].mask != whole[b].mask) return nullptr;
     for (int a = 0; a < 3; ++a)
-      if (upper[b].offset[a] != whole[b].offset[a] || upper[b].size[a] != whole[b].size[a] ||
-          upper[b].mask != whole[b].mask)
+      if (upper[b].offset[a] != whole[b].offset[a] || upper[b].size[a] != whole[b].size[a])
         return nullptr;
+  }
   for (size_t b = upper.size(); b < whole.size(); ++b)
     if (whole[b].level != 1 || whole[b].mask != static_cast<int>(b - upper.size()) + 1)
       return nullptr;

@@ -493,18 +493,18 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   out->samples.assign(count * bytes_per_sample, 0);
   out->has_samples = true;
   const bool full = stop == 0;
-  if (full) {
+  const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;
+  if (full && integer) {
     uint8_t* samples = out->samples.data();
-    bool made;
+    bool made = false;
     switch (g.sample_type) {
       case SampleType::kUint8: made = synthesizeIntegerSamples<uint8_t>(s, samples); break;
       case SampleType::kInt16: made = synthesizeIntegerSamples<int16_t>(s, samples); break;
       case SampleType::kUint16: made = synthesizeIntegerSamples<uint16_t>(s, samples); break;
       case SampleType::kInt32: made = synthesizeIntegerSamples<int32_t>(s, samples); break;
-      default: made = false; break;
+      default: break;
     }
-    if (g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64)
-      return made ? Error{} : checkMemory(kUnavailable, options, last);
+    return made ? Error{} : checkMemory(kUnavailable, options, last);
   }
   // Only grids without a last level apart get here (last_level is made only
   // for full-resolution integer samples, all returned above): `coefficients`
@@ -512,7 +512,6 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
   // Floating-point samples, and reduced resolution: one sample at a time.
   const int w = s->header.frac_bits;
-  const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;
   const int64_t offset = static_cast<int64_t>(s->header.value_offset);
   uint8_t nodata[8];
   std::memcpy(nodata, &g.nodata_bits, 8);
