@@ -84,11 +84,13 @@ inline int64_t floorDivide(int64_t num, int64_t den) {
   return (num % den != 0 && num < 0) ? q - 1 : q;
 }
 
-// spec 6.7.3: the sum over vt's faces taken from vs, F_a .. F_(a + count - 3),
-// of (w_i - vs) x (w_i+1 - vs), from differences reduced to 20 bits (floor
-// division by a power of two: an arithmetic shift), then halved (rounding
-// down) until every component is below 2^30, so that no product of the
-// prediction exceeds 62 bits.
+// spec 6.7.3: the arc normal, the sum over the faces F_a .. F_(a + count - 3)
+// of the ring around `vs` of (w_i - vs) x (w_i+1 - vs), from differences
+// reduced to 20 bits (floor division by a power of two: an arithmetic shift),
+// then halved (rounding down) until every component is below 2^30, so that
+// no product of a prediction exceeds 62 bits. `count` is the number of
+// neighbours the arc spans plus one (vt's new neighbours, vs among them, for
+// the faces vt takes).
 static_assert((int64_t{-3} >> 1) == -2, "floor division by shifting needs an arithmetic right shift");
 inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>>& positions,
                                         const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring,
@@ -114,6 +116,31 @@ inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>
   while (std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])}) >= (int64_t{1} << 30))
     for (int64_t& c : n) c >>= 1;
   return n;
+}
+
+// The axis with the largest component of `normal` (the lowest on ties), or
+// -1 when the normal is zero (no plane); spec 6.7.3.
+inline int normalAxis(const std::array<int64_t, 3>& normal) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(normal[k]) > std::abs(normal[axis])) axis = k;
+  return normal[axis] != 0 ? axis : -1;
+}
+
+// The other two axes of `axis`, in increasing order.
+inline std::array<int, 2> otherAxes(int axis) { return {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2}; }
+
+// spec 6.7.3: the offset along `axis` that puts a point on the plane with
+// `normal` through the origin, given its offsets along the other two axes,
+// rounded: floor((2A + |n|) / (2|n|)), A = -(sum of n_i x offset_i), negated
+// when n < 0. Offsets below 2^31 and components below 2^30, whose largest is
+// n_axis, keep 2A below 2^63.
+inline int64_t offsetOnPlane(const std::array<int64_t, 3>& normal, int axis, const int64_t offset[3]) {
+  int64_t along = 0;
+  for (int k : otherAxes(axis)) along -= normal[k] * offset[k];
+  const int64_t n = normal[axis];
+  if (n < 0) along = -along;
+  return floorDivide(2 * along + std::abs(n), 2 * std::abs(n));
 }
 
 // One coordinate of vt: `predicted` plus a signed residual, in [0, 2^bits).
@@ -240,10 +267,30 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   // spec 6.7.3 geometry.
   const int32_t limit = int32_t{1} << h.position_bits;
   if (h.placement == kPlacementFree) {
+    // The move of vs is mostly along the faces it keeps (both its positions
+    // lie on the surface), so the axis nearest their plane's normal is
+    // predicted from the plane once the other two are known, as vt's is.
+    const uint32_t kept_count = ring.boundary ? d + 1 : (r->a + d - r->b) % d + 2;
+    const std::array<int64_t, 3> kept_normal =
+        arcNormal(s.positions, s.positions[r->vs], ring, ring.boundary ? 0 : r->b, kept_count, h.position_bits);
+    const int plane_axis = normalAxis(kept_normal);
+    const int axis = plane_axis < 0 ? 2 : plane_axis;
+    int64_t move[3] = {0, 0, 0};
+    for (int t = 0; t < 2; ++t) {
+      const int k = otherAxes(axis)[t];
+      if (!codeSigned(coder, ctx.vs_move[t], &r->vs_move[k])) return "a vs move is too long";
+      move[k] = r->vs_move[k];
+    }
+    const int64_t predicted = plane_axis < 0 ? 0 : offsetOnPlane(kept_normal, axis, move);
+    const int64_t wanted = Coder::kEncoding ? r->vs_move[axis] - predicted : 0;
+    if (std::abs(wanted) >= (int64_t{1} << 30)) return "a vs move is too long";
+    int32_t residual = static_cast<int32_t>(wanted);
+    if (!codeSigned(coder, ctx.vs_move[2], &residual)) return "a vs move is too long";
+    move[axis] = predicted + residual;
     for (int k = 0; k < 3; ++k) {
-      if (!codeSigned(coder, ctx.vs_move[k], &r->vs_move[k])) return "a vs move is too long";
-      int64_t q = int64_t{s.positions[r->vs][k]} + r->vs_move[k];
+      const int64_t q = int64_t{s.positions[r->vs][k]} + move[k];
       if (q < 0 || q >= limit) return "vs moves outside [0, 2^position_bits)";
+      r->vs_move[k] = static_cast<int32_t>(move[k]);
     }
   }
   // vt's neighbours after the split: w_a .. w_b and vs (moved), `count` of
@@ -264,25 +311,19 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   // plane's normal is predicted from the plane once the other two are known.
   const std::array<int64_t, 3> normal =
       arcNormal(s.positions, vs_position, ring, r->a, count, h.position_bits);
-  int normal_axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(normal[k]) > std::abs(normal[normal_axis])) normal_axis = k;
-  const bool has_plane = normal[normal_axis] != 0;
-  if (!has_plane) normal_axis = 2;
-  const int tangent_axis[2] = {normal_axis == 0 ? 1 : 0, normal_axis == 2 ? 1 : 2};
+  const int plane_axis = normalAxis(normal);
+  const int normal_axis = plane_axis < 0 ? 2 : plane_axis;
   for (int t = 0; t < 2; ++t) {
-    const int k = tangent_axis[t];
+    const int k = otherAxes(normal_axis)[t];
     if (!codePosition(coder, ctx.tangent_position[t], centroid[k], h.position_bits, &r->vt_position[k]))
       return "vt lies outside [0, 2^position_bits) or its residual is too long";
   }
   int32_t predicted = centroid[normal_axis];
-  if (has_plane) {
+  if (plane_axis >= 0) {
     // (vt - vs) . normal = 0, solved for the normal axis, rounded, clamped.
-    int64_t along = 0;
-    for (int k : tangent_axis) along -= normal[k] * (int64_t{r->vt_position[k]} - vs_position[k]);
-    const int64_t n = normal[normal_axis];
-    if (n < 0) along = -along;
-    const int64_t step = floorDivide(2 * along + std::abs(n), 2 * std::abs(n));
+    int64_t offset[3];
+    for (int k = 0; k < 3; ++k) offset[k] = int64_t{r->vt_position[k]} - vs_position[k];
+    const int64_t step = offsetOnPlane(normal, normal_axis, offset);
     const int64_t top = (int64_t{1} << h.position_bits) - 1;
     predicted = static_cast<int32_t>(std::clamp<int64_t>(vs_position[normal_axis] + step, 0, top));
   }
