@@ -39,8 +39,8 @@ def terrain_mesh_text(fmt, size=20, origin=(40, 50)):
     return "\n".join(head + body) + "\n"
 
 
-def vertex_zero_ring(canonical):
-    """(neighbour count, on the boundary) of vertex 0 of a canonical mesh (spec 6.8)."""
+def rings(canonical):
+    """[(neighbour count, on the boundary)] of every vertex of a canonical mesh (spec 6.8)."""
     line_end = canonical.index(b"\n")
     _, _, v, t, _, s = canonical[:line_end].split()
     at = line_end + 1 + int(v) * (4 if int(s) else 3) * 4
@@ -50,21 +50,35 @@ def vertex_zero_ring(canonical):
         for k in range(3):
             a, b = tri[k], tri[(k + 1) % 3]
             edges[(min(a, b), max(a, b))] = edges.get((min(a, b), max(a, b)), 0) + 1
-    around = [(e, n) for e, n in edges.items() if 0 in e]
-    return len(around), any(n == 1 for _, n in around)
+    count, boundary = [0] * int(v), [False] * int(v)
+    for (a, b), n in edges.items():
+        for w in (a, b):
+            count[w] += 1
+            boundary[w] = boundary[w] or n == 1
+    return list(zip(count, boundary))
 
 
 def first_record(*values):
     """The first PSPL payload's coded string. Every split model is fresh there (6.5.3) and
     each value below uses a different one, so each gets a new model: ("unsigned", v) or
-    ("bit", v)."""
+    ("bit", v). ("flags", [(context, flag), ...]) are split flags (6.7.1), which share
+    the models split_flag[16]."""
     rc = RangeEncoder()
+    split_flag = [PROBABILITY_ONE // 2] * 16
     for kind, value in values:
         if kind == "bit":
             rc.bit([PROBABILITY_ONE // 2], 0, value)
+        elif kind == "flags":
+            for context, flag in value:
+                rc.bit(split_flag, context, flag)
         else:
             rc.unsigned(IntegerModels(), value)
     return rc.finish()
+
+
+def split_vertex_zero(base_rings):
+    """The first record's split flags naming vertex 0 of the base mesh (6.7.1)."""
+    return ("flags", [(min(base_rings[0][0], 15), 1)])
 
 
 def build_mesh(g, parse_chunks, frame, offset_of, find):
@@ -167,8 +181,8 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
               "two bytes after the last coded split")
     # Invalid: hand-coded first records (6.7), which the encoder cannot write.
     base_vertices = struct.unpack_from("<I", chunks[0][1], 8)[0]
-    cow_base = g.reference_output(frame(chunks[:base + 1]))
-    d, on_boundary = vertex_zero_ring(cow_base)
+    cow_rings = rings(g.reference_output(frame(chunks[:base + 1])))
+    d, on_boundary = cow_rings[0]
     assert not on_boundary, "the cow is closed"
 
     def with_first_batch(coded):
@@ -177,27 +191,31 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
         return c
 
     record_at = offset_of(chunks, first_split) + 12
+    assert len(cow_rings) == base_vertices
+    no_split = ("flags", [(min(n, 15), 0) for n, _ in cow_rings])
     g.invalid("mesh_split_vertex_beyond_batch",
-              with_first_batch(first_record(("unsigned", base_vertices))), 303,  # gap
+              with_first_batch(first_record(no_split)), 303,
               "bad_vertex_split", record_at, "6.7.1",
-              f"the first split names vertex {base_vertices}, but the batch starts with {base_vertices} vertices")
-    g.invalid("mesh_split_not_a_neighbour",
-              with_first_batch(first_record(("unsigned", 0), ("unsigned", 1024))),  # gap, arc_start
+              f"the split flags of all {base_vertices} vertices of the batch's mesh are 0: no split vertex")
+    g.invalid("mesh_split_not_a_neighbour",  # vs = 0, arc_start
+              with_first_batch(first_record(split_vertex_zero(cow_rings), ("unsigned", 1024))),
               303, "bad_vertex_split", record_at, "6.7.2",
               f"vl named 1024 places back in a ring of {d}: a vertex that is not a neighbour of vs")
-    g.invalid("mesh_split_same_neighbour",  # gap, arc_start, turn
-              with_first_batch(first_record(("unsigned", 0), ("unsigned", 0), ("unsigned", zigzag(-(d // 2))))),
+    g.invalid("mesh_split_same_neighbour",  # vs = 0, arc_start, turn
+              with_first_batch(first_record(split_vertex_zero(cow_rings), ("unsigned", 0),
+                                            ("unsigned", zigzag(-(d // 2))))),
               303, "bad_vertex_split", record_at, "6.7.2",
               "turn 0: vl and vr the same neighbour, a split that would make a non-manifold edge")
 
     terrain_chunks = parse_chunks(terrain)
     terrain_base = find(terrain_chunks, "PBAS")
     terrain_split = find(terrain_chunks, "PSPL")
-    d, on_boundary = vertex_zero_ring(g.reference_output(frame(terrain_chunks[:terrain_base + 1])))
+    terrain_rings = rings(g.reference_output(frame(terrain_chunks[:terrain_base + 1])))
+    d, on_boundary = terrain_rings[0]
     if on_boundary:
-        # gap 0 (vs = 0), on_edge 1, last 0 (G2 only: (a, b) = (0, f)), then f = d, but a
-        # fan of d neighbours has d - 1 faces.
-        fan_too_wide = first_record(("unsigned", 0), ("bit", 1), ("bit", 0), ("unsigned", d))
+        # vs = 0, on_edge 1, last 0 (G2 only: (a, b) = (0, f)), then f = d, but a fan of d
+        # neighbours has d - 1 faces.
+        fan_too_wide = first_record(split_vertex_zero(terrain_rings), ("bit", 1), ("bit", 0), ("unsigned", d))
         c = list(terrain_chunks)
         c[terrain_split] = ("PSPL", terrain_chunks[terrain_split][1][:4] + fan_too_wide)
         g.invalid("mesh_split_fan_too_wide", c, 303, "bad_vertex_split", offset_of(c, terrain_split) + 12,

@@ -78,13 +78,14 @@ uint32_t codeTruncated(Coder& coder, uint32_t n, uint32_t value) {
 // spec 6.5.3 the bit models of a PM stream. PBAS uses `base_*`; the split
 // models live across all PSPL chunks of the stream.
 constexpr int kTurnContexts = 16;
+constexpr uint8_t kFlagContexts = 16;
 struct PmContexts {
   IntegerModels base_position[3];
   IntegerModels base_scalar;
   BitModel base_new_vertex[3];
   IntegerModels base_back_reference;
 
-  IntegerModels gap;
+  BitModel split_flag[kFlagContexts];  // by min(neighbours, 15) of the vertex (6.7.1)
   IntegerModels arc_start[kTurnContexts];  // interior rings, by min(d, 15)
   IntegerModels turn[kTurnContexts];       // interior rings, by min(d, 15)
   BitModel boundary_kind[2];

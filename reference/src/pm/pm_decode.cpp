@@ -20,7 +20,8 @@ namespace {
 uint64_t memoryNeeded(const PmHeader& h) {
   const uint64_t splits = h.splitCount();
   const uint64_t triangles = uint64_t{h.base_triangle_count} + 2 * splits;
-  return uint64_t{h.vertex_count} * (sizeof(std::array<int32_t, 3>) + 4 + 4) + triangles * 3 * 8 +
+  // Per vertex: position, corner, lock mark, flag context.
+  return uint64_t{h.vertex_count} * (sizeof(std::array<int32_t, 3>) + 4 + 4 + 1) + triangles * 3 * 8 +
          splits * sizeof(SplitRecord);
 }
 

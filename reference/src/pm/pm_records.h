@@ -182,24 +182,23 @@ template <class Coder>
 std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, BatchCursor* batch,
                       SplitRecord* r) {
   const PmHeader& h = s.header;
-  // spec 6.7.1: vs is the (gap + 1)-th vertex after prev_vs that is not locked.
-  LockedVertices& locked = s.locked_ahead;
-  uint32_t gap = 0;
-  if (Coder::kEncoding) {
-    const uint32_t skipped = r->vs == 0 ? 0 : locked.takeUpTo(r->vs - 1);
-    if (locked.smallest() == r->vs)
-      return "split vertex " + std::to_string(r->vs) + " neighbours an earlier split of its batch";
-    gap = static_cast<uint32_t>(r->vs - (batch->prev_vs + 1)) - skipped;
+  // spec 6.7.1: vs is the first vertex after prev_vs, not locked, whose split
+  // flag is 1. Each flag costs coded data (at least about 1/360 of a byte),
+  // so a hostile stream cannot make this walk much longer than its payload.
+  uint32_t vs = static_cast<uint32_t>(batch->prev_vs + 1);
+  for (;; ++vs) {
+    if (vs >= batch->start)
+      return "no split vertex among the " + std::to_string(batch->start) +
+             " vertices of the mesh at the start of the batch";
+    if (s.lock_stamp[vs] == batch->stamp) {
+      if (Coder::kEncoding && vs == r->vs)
+        return "split vertex " + std::to_string(vs) + " neighbours an earlier split of its batch";
+      continue;
+    }
+    if (coder.bit(&ctx.split_flag[s.flag_context[vs]], Coder::kEncoding && vs == r->vs)) break;
+    if (coder.overrun()) return "coded data ends inside a vertex split (truncated record)";
   }
-  if (!codeUnsigned(coder, ctx.gap, &gap)) return "the vertex gap is too long";
-  int64_t vs = Coder::kEncoding ? int64_t{r->vs} : batch->prev_vs + 1 + int64_t{gap};
-  if (!Coder::kEncoding)
-    for (uint32_t more = 1; more != 0 && vs < batch->start; vs += more)
-      more = locked.takeUpTo(static_cast<uint32_t>(vs));
-  if (vs >= batch->start)
-    return "split vertex " + std::to_string(vs) + " is not a vertex of the mesh at the start of the batch (" +
-           std::to_string(batch->start) + " vertices)";
-  r->vs = static_cast<uint32_t>(vs);
+  r->vs = vs;
   batch->prev_vs = vs;
   // The encoder has found vs's ring already: it names vl and vr by it.
   const CornerTable::Ring& ring = s.ring;
@@ -343,10 +342,20 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
   }
   if (coder.overrun()) return "coded data ends inside a vertex split (truncated record)";
   for (uint32_t w : ring.neighbours)
-    if (w > r->vs && w < batch->start && s.lock_stamp[w] != batch->stamp) {
-      s.lock_stamp[w] = batch->stamp;
-      locked.push(w);
-    }
+    if (w > r->vs && w < batch->start) s.lock_stamp[w] = batch->stamp;
+  // spec 6.7.1: the neighbour counts after the split. vs keeps w_b .. w_a
+  // (less w_a without G1, less w_b without G2) and gains vt, so it loses the
+  // k - 1 neighbours strictly between w_a and w_b (k = count - 2 = b - a,
+  // modulo d); w_a and w_b gain vt if its face with vs is added; vt has
+  // `count` neighbours.
+  const uint32_t taken = count - 2;
+  const uint32_t without = (r->shape.has_g1 ? 0 : 1) + (r->shape.has_g2 ? 0 : 1);
+  std::vector<uint8_t>& context = s.flag_context;
+  context[r->vs] = s.flagContext(d - taken + 2 - without);
+  const auto gain = [&](uint32_t w) { context[w] = s.flagContext(context[w] + 1u); };
+  if (r->shape.has_g1) gain(ring.neighbours[r->a]);
+  if (r->shape.has_g2) gain(ring.neighbours[r->b]);
+  context.push_back(s.flagContext(count));
   return "";
 }
 

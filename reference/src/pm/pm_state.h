@@ -4,13 +4,14 @@
 // its own stream through it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "mesh/corner_table.h"
-#include "pm/locked_vertices.h"
+#include "pm/pm_coding.h"
 #include "mrsv/progressive_mesh.h"
 
 namespace mrsv {
@@ -42,17 +43,28 @@ struct ProgressiveMesh::Impl {
   CornerTable::Ring ring;  // scratch
 
   // spec 6.7.1: the ring neighbours of a batch's split vertices cannot be
-  // split in the same batch, so `gap` skips them. These are the locked
-  // vertices above the last split vertex, each pushed once (lock_stamp[v] ==
-  // the batch's stamp).
-  pm::LockedVertices locked_ahead;
+  // split in the same batch and have no split flag (lock_stamp[v] == the
+  // batch's stamp).
   std::vector<uint32_t> lock_stamp;
   uint32_t batches_begun = 0;
+  // spec 6.7.1: min(neighbour count, 15) of every vertex, the context of its
+  // split flag. Kept by codeSplit() as splits are coded (only coding needs it,
+  // and coding only goes up), so that no ring is walked for a flag.
+  std::vector<uint8_t> flag_context;
 
   BatchCursor beginBatch() {
-    locked_ahead.clear();
     lock_stamp.resize(table.vertexCount(), 0);
+    if (flag_context.empty()) {  // the first batch: count the base mesh's neighbours
+      flag_context.reserve(splits.capacity() + table.vertexCount());
+      for (uint32_t v = 0; v < table.vertexCount(); ++v) {
+        table.ring(v, &ring);
+        flag_context.push_back(flagContext(ring.neighbours.size()));
+      }
+    }
     return BatchCursor{table.vertexCount(), -1, ++batches_begun};
+  }
+  static uint8_t flagContext(size_t neighbours) {
+    return static_cast<uint8_t>(std::min<size_t>(neighbours, pm::kFlagContexts - 1));
   }
 
   // The ring of v into `ring`. The positions (and scalars) of its neighbours

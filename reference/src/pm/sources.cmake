@@ -11,7 +11,7 @@ set(MRSV_PM_ENCODE_SOURCES
   reference/src/pm/pm_encode.cpp)
 set(MRSV_PM_TESTS
   reference/tests/corner_table_test.cpp
-  reference/tests/locked_vertices_test.cpp)
+  reference/tests/split_flags_test.cpp)
 
 # tools/bench/pm_decode_bench: Google Benchmark of decoding and level switching
 # on streams built from the shared meshes, so it needs the encoder and mrsv_io.
