@@ -88,9 +88,8 @@ inline int64_t floorDivide(int64_t num, int64_t den) {
 // of the ring around `vs` of (w_i - vs) x (w_i+1 - vs), from differences
 // reduced to 20 bits (floor division by a power of two: an arithmetic shift),
 // then halved (rounding down) until every component is below 2^30, so that
-// no product of a prediction exceeds 62 bits. `count` is the number of
-// neighbours the arc spans plus one (vt's new neighbours, vs among them, for
-// the faces vt takes).
+// no product of a prediction exceeds 62 bits. The arc has count - 2 faces
+// (so for the faces vt takes, `count` is the number of vt's new neighbours).
 static_assert((int64_t{-3} >> 1) == -2, "floor division by shifting needs an arithmetic right shift");
 inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>>& positions,
                                         const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring,
