@@ -29,9 +29,12 @@
 // their neighbours. Unlocked vertices keep their neighbourhood through the
 // batch, so the accepted collapses satisfy the independence rule of
 // SimplifyResult by construction, and candidates that touch a locked vertex
-// simply wait for the next batch. Sorting per batch, rather than keeping a
-// global heap, is what makes it fast: a heap pays O(log n) cache misses for
-// every stale, locked or recomputed entry, and batches have plenty of those.
+// simply wait for the next batch. With quadric costs, a collapse about to be
+// taken is charged the deviation guard too (deviation_guard.h), and waits for
+// a later batch if that makes it dearer than the limit. Sorting per batch,
+// rather than keeping a global heap, is what makes it fast: a heap pays
+// O(log n) cache misses for every stale, locked or recomputed entry, and
+// batches have plenty of those.
 #include "simplify/simplify.h"
 
 #include <algorithm>
@@ -41,6 +44,7 @@
 
 #include "simplify/collapse_checks.h"
 #include "simplify/collapse_costs.h"
+#include "simplify/deviation_guard.h"
 #include "simplify/edge_topology.h"
 
 namespace mrsv {
@@ -180,6 +184,8 @@ class Simplifier {
   // Per triangle: its plane, kept current as vertices move.
   std::vector<simplify::TrianglePlane> planes_;
   std::vector<Vec3> normals_;  // CollapseCost::kPaper only
+  simplify::DeviationGuard guard_;  // used when guarded_
+  bool guarded_ = false;
   // Per canonical half-edge (EdgeState).
   std::vector<EdgeState> edge_;
   // Per vertex (VertexState).
@@ -240,6 +246,10 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
   }
   const double unit = edges > 0 && length_sum > 0.0 ? length_sum / static_cast<double>(edges) : 1.0;
   quadric_free_ = options_.cost == CollapseCost::kQuadric && options_.placement == Placement::kFree;
+  // The guard's cost is in the quadric's units (area times squared distance);
+  // the paper's energies have their own.
+  guarded_ = options_.cost == CollapseCost::kQuadric && options_.deviation_weight > 0.0;
+  if (guarded_) guard_.init(mesh, options_.deviation_weight);
   paper_.normal = options_.weight_normal;
   paper_.edge_length = options_.weight_edge_length;
   paper_.equilateral = options_.weight_equilateral;
@@ -588,6 +598,17 @@ void Simplifier::run(SimplifyResult* result) {
           ok = consistent(h, removed, kept, &position);
         }
         if (!ok) continue;
+        if (guarded_) {
+          // The guard is charged here, lazily, rather than for every
+          // candidate: it costs a walk over the members and the fan, and the
+          // quadric cost is a lower bound of the larger of the two, so the
+          // order is the same as if every candidate had been charged.
+          const double deviation = guard_.cost(topo_, positions_, removed, kept, position);
+          if (deviation > edge_[h].cost) {
+            edge_[h].cost = deviation;
+            if (deviation > limit) continue;  // waits for a later batch
+          }
+        }
 
         // Lock the neighbourhoods as they are before the collapse (afterwards
         // the kept vertex's neighbours are their union: the same set).
@@ -596,6 +617,7 @@ void Simplifier::run(SimplifyResult* result) {
         lockNeighbourhood(kept);
         collapse(h, removed, kept);
         positions_[kept] = position;
+        if (guarded_) guard_.merge(topo_, positions_, removed, kept);
         // Every triangle whose shape changed is now in the kept vertex's fan.
         topo_.forEachOutgoing(kept, [&](uint32_t e) { updatePlane(EdgeTopology::triangleOf(e)); });
         --live_vertices_;

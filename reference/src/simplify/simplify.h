@@ -42,6 +42,11 @@ struct SimplifyOptions {
   // Stop after this many seconds of collapsing (0: no limit); the result is
   // still complete and valid, only less simplified.
   double time_budget_seconds = 0.0;
+  // Weight of the deviation guard (simplify/deviation_guard.h; quadric costs
+  // only, 0 turns it off): a collapse costs at least this times its new fan's
+  // area times the squared distances between the input and the new fan that
+  // the quadric misses (spec decision D32).
+  double deviation_weight = 0.3;
   // Called now and then with the fraction done, in [0, 1].
   std::function<void(double)> progress;
   // The batch rule: a batch takes, cheapest first, the consistent collapses

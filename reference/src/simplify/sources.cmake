@@ -5,6 +5,7 @@ set(MRSV_SIMPLIFY_SOURCES
   reference/src/simplify/edge_topology.cpp
   reference/src/simplify/collapse_checks.cpp
   reference/src/simplify/collapse_costs.cpp
+  reference/src/simplify/deviation_guard.cpp
   reference/src/simplify/simplify.cpp)
 set(MRSV_SIMPLIFY_TESTS
   reference/tests/simplify_test.cpp)
