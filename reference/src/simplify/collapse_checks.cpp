@@ -42,12 +42,6 @@ bool linkConditionHolds(const EdgeTopology& topo, uint32_t removed, uint32_t kep
 
 namespace {
 
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
 // The triangle (p, x, y) with p moved from `from` to `to`: false if it flips
 // or degenerates.
 inline bool triangleStaysValid(const Vec3& from, const Vec3& to, const Vec3& x, const Vec3& y,

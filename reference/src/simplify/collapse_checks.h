@@ -9,10 +9,9 @@
 #include <vector>
 
 #include "simplify/edge_topology.h"
+#include "simplify/vec3.h"
 
 namespace mrsv::simplify {
-
-using Vec3 = std::array<double, 3>;
 
 // Table 1 of the paper with the half-edge refinement. Case 1 (interior edge,
 // interior endpoints) and case 5 (boundary edge) are allowed. Of cases 2 and 3

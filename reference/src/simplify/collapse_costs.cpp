@@ -11,13 +11,6 @@ namespace {
 // about 1e-3 as firmly as the mean.
 constexpr double kConditionLimit = 1e-6;
 
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-
 }  // namespace
 
 bool Quadric::constrainedMinimizer(const Vec3& g, double offset, Vec3* out) const {

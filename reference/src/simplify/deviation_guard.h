@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "mrsv/mesh.h"
-#include "simplify/collapse_checks.h"
 #include "simplify/edge_topology.h"
+#include "simplify/vec3.h"
 
 namespace mrsv::simplify {
 

@@ -600,9 +600,11 @@ void Simplifier::run(SimplifyResult* result) {
         if (!ok) continue;
         if (guarded_) {
           // The guard is charged here, lazily, rather than for every
-          // candidate: it costs a walk over the members and the fan, and the
-          // quadric cost is a lower bound of the larger of the two, so the
-          // order is the same as if every candidate had been charged.
+          // candidate: it costs a walk over the members and the fan. The
+          // quadric cost is a lower bound of the charged one, so a batch
+          // still takes its collapses in quadric order; the charge decides
+          // only whether one waits for a later batch, where it is sorted by
+          // its charged cost.
           const double deviation = guard_.cost(topo_, positions_, removed, kept, position);
           if (deviation > edge_[h].cost) {
             edge_[h].cost = deviation;
