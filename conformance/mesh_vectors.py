@@ -108,7 +108,9 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     g.valid("mesh_cow", cow_stream, "6", "the Viewpoint cow (closed), 14-bit positions, quadric cost, vs stays")
     prefixes("mesh_cow", cow_stream, "6.1, 6.7", "the cow")
     g.valid("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free"]), "6.7.3",
-            "the cow with free placement: every split also moves vs")
+            "the cow with free placement: every split also moves vs, along its plane on the grid of move_detail 4")
+    g.valid("mesh_cow_free_exact", encode(cow, ["--bits", "12", "--placement", "free", "--move-detail", "0"]),
+            "6.7.3", "the cow with free placement and move_detail 0: every move to the quantisation step")
     g.valid("mesh_cow_paper", encode(cow, ["--bits", "10", "--cost", "paper", "--placement", "endpoint"]), "6",
             "the cow simplified with the paper's energies (50, 1, 5), 10-bit positions")
     terrain = encode(terrain_obj, ["--bits", "16"])
@@ -135,8 +137,12 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
               hdr_at + 1, "6.2", "position_bits 0")
     g.invalid("mesh_position_bits_31", with_header(lambda p: put(p, 1, "<B", 31)), 301, "bad_mesh_header",
               hdr_at + 1, "6.2, B.5", "position_bits above 30")
-    g.invalid("mesh_reserved", with_header(lambda p: put(p, 3, "<B", 1)), 105, "reserved_nonzero",
-              hdr_at + 3, "6.2", "the reserved byte of PHDR is not 0")
+    g.invalid("mesh_reserved", with_header(lambda p: put(p, 20, "<I", 1)), 105, "reserved_nonzero",
+              hdr_at + 20, "6.2", "the reserved u32 of PHDR is not 0")
+    g.invalid("mesh_move_detail_endpoint", with_header(lambda p: put(p, 3, "<B", 4)), 301, "bad_mesh_header",
+              hdr_at + 3, "6.2", "move_detail 4 with placement 0 (vs never moves)")
+    g.invalid("mesh_move_detail_31", with_header(lambda p: (put(p, 0, "<B", 1), put(p, 3, "<B", 31))), 301,
+              "bad_mesh_header", hdr_at + 3, "6.2", "move_detail above 30")
     g.invalid("mesh_too_many_vertices", with_header(lambda p: put(p, 4, "<I", (1 << 28) + 1)), 301,
               "bad_mesh_header", hdr_at + 4, "6.2, B.5", "vertex_count above 2^28")
     g.invalid("mesh_base_two_vertices", with_header(lambda p: put(p, 8, "<I", 2)), 301, "bad_mesh_header",

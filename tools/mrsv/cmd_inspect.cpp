@@ -181,16 +181,17 @@ InfoView meshView(const DecodedMesh& mesh) {
                 h.vertex_count, h.base_vertex_count, h.base_triangle_count, h.splitCount(), h.batch_count,
                 h.position_bits, h.position_step, placement);
   v.summary = buf;
+  if (h.move_detail) v.summary += " (moves with " + std::to_string(h.move_detail) + " bits of detail)";
   if (h.scalar_bits) v.summary += ", " + std::to_string(h.scalar_bits) + "-bit scalar";
   v.summary += ", decoded " + std::to_string(mesh.batches_decoded) + "/" + std::to_string(h.batch_count) +
                " batches (" + std::to_string(level) + " splits)" + countText(c);
   std::snprintf(buf, sizeof buf,
                 "  \"mesh\": {\"vertex_count\": %u, \"base_vertex_count\": %u, \"base_triangle_count\": %u, "
                 "\"batch_count\": %u, \"position_bits\": %u, \"position_step\": %.17g, "
-                "\"origin\": [%.17g, %.17g, %.17g], \"placement\": \"%s\", \"scalar_bits\": %u, "
+                "\"origin\": [%.17g, %.17g, %.17g], \"placement\": \"%s\", \"move_detail\": %u, \"scalar_bits\": %u, "
                 "\"batches_decoded\": %u, \"splits_decoded\": %u},\n",
                 h.vertex_count, h.base_vertex_count, h.base_triangle_count, h.batch_count, h.position_bits,
-                h.position_step, h.origin[0], h.origin[1], h.origin[2], placement, h.scalar_bits,
+                h.position_step, h.origin[0], h.origin[1], h.origin[2], placement, h.move_detail, h.scalar_bits,
                 mesh.batches_decoded, level);
   v.json_content = buf;
   return v;

@@ -23,6 +23,9 @@ struct PmHeader {
   uint8_t placement = kPlacementEndpoint;
   uint8_t position_bits = 14;
   uint8_t scalar_bits = 0;  // 0: no per-vertex scalar
+  // Placement 1: 0, or 1 to 30, the bits of detail the tangential part of a
+  // move of vs keeps per longest edge of its ring (spec 6.7.3 step 1).
+  uint8_t move_detail = 0;
   uint32_t vertex_count = 0;
   uint32_t base_vertex_count = 0;
   uint32_t base_triangle_count = 0;

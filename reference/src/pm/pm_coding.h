@@ -91,6 +91,7 @@ struct PmContexts {
   BitModel boundary_kind[2];
   IntegerModels fan_faces;            // faces vt takes at a boundary edge
   IntegerModels fan_interior;         // b - a - 1 of a boundary vertex split inside its fan
+  BitModel move_fine;                 // a move of vs in quantisation steps (6.7.3 step 1)
   IntegerModels vs_move[3];
   IntegerModels tangent_position[2];  // vt's two axes predicted by the centroid
   IntegerModels normal_position;      // vt's axis predicted by the plane

@@ -17,6 +17,9 @@ struct PmEncodeOptions {
   uint8_t position_bits = 16;  // per coordinate, over the bounding box's longest side
   uint8_t scalar_bits = 16;    // used when the mesh has scalars
   Placement placement = Placement::kEndpoint;  // as the simplifier ran
+  // Free placement: the bits of detail of a move of vs along its plane per
+  // longest edge of its ring (spec 6.7.3 step 1; 0: every quantisation step).
+  uint8_t move_detail = 0;
 };
 
 struct PmEncodeReport {

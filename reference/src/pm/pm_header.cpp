@@ -21,7 +21,7 @@ Error parsePmHeader(const ChunkView& chunk, PmHeader* out) {
   h.placement = r.u8();
   h.position_bits = r.u8();
   h.scalar_bits = r.u8();
-  uint8_t reserved8 = r.u8();
+  h.move_detail = r.u8();
   h.vertex_count = r.u32();
   h.base_vertex_count = r.u32();
   h.base_triangle_count = r.u32();
@@ -38,7 +38,8 @@ Error parsePmHeader(const ChunkView& chunk, PmHeader* out) {
     return fail(Status::kBadMeshHeader, 1, "position_bits", "position_bits must be 1 to 30");
   if (h.scalar_bits > kMaxPositionBits)
     return fail(Status::kBadMeshHeader, 2, "scalar_bits", "scalar_bits must be 0 to 30");
-  if (reserved8 != 0) return fail(Status::kReservedNonZero, 3, "reserved", "must be 0");
+  if (h.move_detail > kMaxPositionBits || (h.placement == kPlacementEndpoint && h.move_detail != 0))
+    return fail(Status::kBadMeshHeader, 3, "move_detail", "move_detail must be 0 with placement 0, else 0 to 30");
   if (h.vertex_count > kMaxMeshVertices)
     return fail(Status::kBadMeshHeader, 4, "vertex_count", "vertex_count above 2^28");
   if (h.base_vertex_count < 3 || h.base_vertex_count > h.vertex_count)
@@ -78,7 +79,7 @@ std::vector<uint8_t> serializePmHeader(const PmHeader& h) {
   w.u8(h.placement);
   w.u8(h.position_bits);
   w.u8(h.scalar_bits);
-  w.u8(0);
+  w.u8(h.move_detail);
   w.u32(h.vertex_count);
   w.u32(h.base_vertex_count);
   w.u32(h.base_triangle_count);

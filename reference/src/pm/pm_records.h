@@ -84,37 +84,77 @@ inline int64_t floorDivide(int64_t num, int64_t den) {
   return (num % den != 0 && num < 0) ? q - 1 : q;
 }
 
-// spec 6.7.3: the arc normal, the sum over the faces F_a .. F_(a + count - 3)
-// of the ring around `vs` of (w_i - vs) x (w_i+1 - vs), from differences
-// reduced to 20 bits (floor division by a power of two: an arithmetic shift),
-// then halved (rounding down) until every component is below 2^30, so that
-// no product of a prediction exceeds 62 bits. The arc has count - 2 faces
-// (so for the faces vt takes, `count` is the number of vt's new neighbours).
+// spec 6.7.3: a difference of coordinates reduced to 20 bits by floor
+// division by a power of two (an arithmetic shift), for the arc normal.
 static_assert((int64_t{-3} >> 1) == -2, "floor division by shifting needs an arithmetic right shift");
+inline int normalDrop(int position_bits) { return position_bits > 20 ? position_bits - 20 : 0; }
+inline void reducedEdge(const std::array<int32_t, 3>& w, const std::array<int32_t, 3>& p, int drop, int64_t* e) {
+  for (int k = 0; k < 3; ++k) e[k] = (int64_t{w[k]} - p[k]) >> drop;
+}
+inline void addCross(const int64_t* e0, const int64_t* e1, std::array<int64_t, 3>* n) {
+  (*n)[0] += e0[1] * e1[2] - e0[2] * e1[1];
+  (*n)[1] += e0[2] * e1[0] - e0[0] * e1[2];
+  (*n)[2] += e0[0] * e1[1] - e0[1] * e1[0];
+}
+// The sum halved (rounding down) until every component is below 2^30, so
+// that no product of a prediction exceeds 62 bits.
+inline void reduceNormal(std::array<int64_t, 3>* n) {
+  while (std::max({std::abs((*n)[0]), std::abs((*n)[1]), std::abs((*n)[2])}) >= (int64_t{1} << 30))
+    for (int64_t& c : *n) c >>= 1;
+}
+
+// spec 6.7.3: the arc normal, the sum over the faces F_a .. F_(a + count - 3)
+// of the ring around `vs` of (w_i - vs) x (w_i+1 - vs), from reduced
+// differences, then reduced. The arc has count - 2 faces (so for the faces vt
+// takes, `count` is the number of vt's new neighbours). The encoder sums the
+// same faces from its own face lists (pm_encode.cpp): the sum's order does
+// not matter.
 inline std::array<int64_t, 3> arcNormal(const std::vector<std::array<int32_t, 3>>& positions,
                                         const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring,
                                         uint32_t a, uint32_t count, int position_bits) {
-  const int drop = position_bits > 20 ? position_bits - 20 : 0;
+  const int drop = normalDrop(position_bits);
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
-  int64_t e0[3], e1[3];
-  const auto edge = [&](uint32_t at, int64_t* e) {
-    for (int k = 0; k < 3; ++k) e[k] = (int64_t{positions[ring.neighbours[at]][k]} - vs[k]) >> drop;
-  };
   std::array<int64_t, 3> n{0, 0, 0};
   if (count < 3) return n;
+  int64_t e0[3], e1[3];
   uint32_t at = a;
-  edge(at, e0);
+  reducedEdge(positions[ring.neighbours[at]], vs, drop, e0);
   for (uint32_t i = 0; i + 2 < count; ++i) {
     at = at + 1 == d ? 0 : at + 1;
-    edge(at, e1);
-    n[0] += e0[1] * e1[2] - e0[2] * e1[1];
-    n[1] += e0[2] * e1[0] - e0[0] * e1[2];
-    n[2] += e0[0] * e1[1] - e0[1] * e1[0];
+    reducedEdge(positions[ring.neighbours[at]], vs, drop, e1);
+    addCross(e0, e1, &n);
     for (int k = 0; k < 3; ++k) e0[k] = e1[k];
   }
-  while (std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])}) >= (int64_t{1} << 30))
-    for (int64_t& c : n) c >>= 1;
+  reduceNormal(&n);
   return n;
+}
+
+// spec 6.7.3 step 1: the tangential part of a move of vs is coded in units of
+// 2^shift, shift = max(0, floor(log2 L2) / 2 - move_detail) (integer halving),
+// L2 the largest squared length of the edges w_i w_(i+1) of its faces; 0
+// without detail or when the ring collapses to a point.
+inline int moveShift(int64_t longest2, uint8_t move_detail) {
+  if (move_detail == 0 || longest2 <= 0) return 0;
+  const int log2_longest2 = 63 - __builtin_clzll(static_cast<uint64_t>(longest2));
+  return std::max(0, log2_longest2 / 2 - int{move_detail});
+}
+inline int64_t squaredDistance(const std::array<int32_t, 3>& p, const std::array<int32_t, 3>& q) {
+  int64_t sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t e = int64_t{p[k]} - q[k];
+    sum += e * e;
+  }
+  return sum;
+}
+// L2 of a ring: its faces F_0 .. F_(d-1) (interior) or F_0 .. F_(d-2) (boundary).
+inline int64_t longestFaceEdge2(const std::vector<std::array<int32_t, 3>>& positions, const CornerTable::Ring& ring) {
+  const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
+  const uint32_t faces = ring.boundary ? d - 1 : d;
+  int64_t longest = 0;
+  for (uint32_t i = 0; i < faces; ++i)
+    longest = std::max(longest, squaredDistance(positions[ring.neighbours[i]],
+                                                positions[ring.neighbours[i + 1 == d ? 0 : i + 1]]));
+  return longest;
 }
 
 // The axis with the largest component of `normal` (the lowest on ties), or
@@ -158,14 +198,7 @@ bool codePosition(Coder& coder, IntegerModels& m, int32_t predicted, int bits, i
 inline uint32_t widestFace(const std::vector<std::array<int32_t, 3>>& positions,
                            const std::array<int32_t, 3>& vs, const CornerTable::Ring& ring) {
   const uint32_t d = static_cast<uint32_t>(ring.neighbours.size());
-  const auto squared = [&](uint32_t i) {
-    int64_t sum = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int64_t e = int64_t{positions[ring.neighbours[i]][k]} - vs[k];
-      sum += e * e;
-    }
-    return sum;
-  };
+  const auto squared = [&](uint32_t i) { return squaredDistance(positions[ring.neighbours[i]], vs); };
   uint32_t widest = 0;
   int64_t best = -1, previous = squared(0);
   for (uint32_t i = 0; i < d; ++i) {
@@ -273,11 +306,25 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
         arcNormal(s.positions, s.positions[r->vs], ring, ring.boundary ? 0 : r->b, kept_count, h.position_bits);
     const int plane_axis = normalAxis(kept_normal);
     const int axis = plane_axis < 0 ? 2 : plane_axis;
+    // Along the plane, the move is coded in units of 2^shift, which grow
+    // with the ring: the surface hardly changes when a vertex slides a
+    // fraction of an edge along it, and the encoder places vs on that grid.
+    // A flag lets the encoder keep every step where sliding would take vs off
+    // the planes of its triangles (a crease, a curved fan).
+    int shift = moveShift(longestFaceEdge2(s.positions, ring), h.move_detail);
+    if (shift > 0) {
+      const int32_t mask = (int32_t{1} << shift) - 1;
+      const auto [t0, t1] = otherAxes(axis);
+      if (coder.bit(&ctx.move_fine, Coder::kEncoding && ((r->vs_move[t0] & mask) | (r->vs_move[t1] & mask)) != 0))
+        shift = 0;
+    }
     int64_t move[3] = {0, 0, 0};
     for (int t = 0; t < 2; ++t) {
       const int k = otherAxes(axis)[t];
-      if (!codeSigned(coder, ctx.vs_move[t], &r->vs_move[k])) return "a vs move is too long";
-      move[k] = r->vs_move[k];
+      int32_t units = r->vs_move[k] >> shift;
+      if (!codeSigned(coder, ctx.vs_move[t], &units)) return "a vs move is too long";
+      move[k] = int64_t{units} * (int64_t{1} << shift);
+      if (std::abs(move[k]) >= (int64_t{1} << 30)) return "a vs move is too long";
     }
     const int64_t predicted = plane_axis < 0 ? 0 : offsetOnPlane(kept_normal, axis, move);
     const int64_t wanted = Coder::kEncoding ? r->vs_move[axis] - predicted : 0;
