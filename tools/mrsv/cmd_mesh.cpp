@@ -16,10 +16,6 @@
 namespace mrsv::cli {
 namespace {
 
-// Free placement: the tangential part of a move of vs keeps 4 bits per longest
-// ring edge (decision D33).
-constexpr uint8_t kDefaultMoveDetail = 4;
-
 const char kEncodeHelp[] =
     "Usage: mrsv encode [options] IN.{obj,ply,off} OUT.mrsv\n"
     "\n"
@@ -116,12 +112,11 @@ int runMeshEncode(int argc, char** argv) {
     else return fail(cmd, "--placement must be endpoint or free", kExitUsage);
   }
   encode.placement = simplify.placement;
-  encode.move_detail = encode.placement == Placement::kFree ? kDefaultMoveDetail : 0;
   uint64_t number = 0;
   if (args.has("move-detail")) {
     if (!parseUint64(args.value("move-detail"), &number) || number > 30)
       return fail(cmd, "--move-detail must be a whole number from 0 to 30", kExitUsage);
-    if (encode.placement != Placement::kFree) return fail(cmd, "--move-detail needs --placement free", kExitUsage);
+    if (encode.placement != Placement::kFree) return fail(cmd, "--move-detail needs free placement (the default), not --placement endpoint", kExitUsage);
     encode.move_detail = static_cast<uint8_t>(number);
   }
   if (args.has("bits")) {

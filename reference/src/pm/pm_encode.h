@@ -18,8 +18,9 @@ struct PmEncodeOptions {
   uint8_t scalar_bits = 16;    // used when the mesh has scalars
   Placement placement = Placement::kEndpoint;  // as the simplifier ran
   // Free placement: the bits of detail of a move of vs along its plane per
-  // longest edge of its ring (spec 6.7.3 step 1; 0: every quantisation step).
-  uint8_t move_detail = 0;
+  // longest edge of its ring (spec 6.7.3 step 1; 0: every quantisation step;
+  // 4 by decision D33). Endpoint placement writes 0.
+  uint8_t move_detail = 4;
 };
 
 struct PmEncodeReport {
