@@ -1,9 +1,10 @@
 // The grid of a move of vs (spec 6.7.3 step 1, decision D33): its shift from
 // the ring, and what the encoder's slides onto it keep. On a real mesh the
 // full-resolution mesh must come back exactly whatever the grid (the slides
-// only change coarser levels), the stream must be smaller with it, and the
-// coarse levels must stay within a quantisation step of the exact ones'
-// error: no vertex slides more than one step off a plane of its triangles.
+// only change coarser levels), the stream must be smaller with it, the
+// coarser levels must keep their connectivity, and a vertex that slid must
+// have moved by a fraction of its ring (at most a quarter of its longest
+// ring edge).
 #include <gtest/gtest.h>
 
 #include <string>

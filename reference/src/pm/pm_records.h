@@ -311,7 +311,7 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
     // fraction of an edge along it, and the encoder places vs on that grid.
     // A flag lets the encoder keep every step where sliding would take vs off
     // the planes of its triangles (a crease, a curved fan).
-    int shift = moveShift(longestFaceEdge2(s.positions, ring), h.move_detail);
+    int shift = h.move_detail ? moveShift(longestFaceEdge2(s.positions, ring), h.move_detail) : 0;
     if (shift > 0) {
       const int32_t mask = (int32_t{1} << shift) - 1;
       const auto [t0, t1] = otherAxes(axis);
