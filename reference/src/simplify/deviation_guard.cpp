@@ -112,6 +112,10 @@ double DeviationGuard::cost(const EdgeTopology& topo, const std::vector<Vec3>& p
                             uint32_t kept, const Vec3& x) const {
   // The fan the collapse makes: the triangles around either end but not on
   // the edge, with x for the end.
+  // The members' input positions are scattered: they are asked into the
+  // cache before the fan is built, which takes about as long as a miss.
+  for (const uint32_t v : {kept, removed})
+    for (uint32_t i = 0; i < members_[v].count; ++i) __builtin_prefetch(&input_[members_[v].vertex[i]]);
   std::vector<Triangle>& fan = scratch_fan;
   fan.clear();
   appendFan(topo, positions, kept, removed, x, &fan);

@@ -45,6 +45,13 @@ class DeviationGuard {
   double cost(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t removed,
               uint32_t kept, const Vec3& x) const;
 
+  // Asks the member lists of a and b into the cache ahead of a cost() of
+  // their edge: nothing nearby reads them, so each was a cache miss there.
+  void prefetch(uint32_t a, uint32_t b) const {
+    __builtin_prefetch(&members_[a]);
+    __builtin_prefetch(&members_[b]);
+  }
+
   // After the collapse (topology and positions updated): `kept` stands for the
   // members of both ends, the farthest kMaxMembers from its new fan.
   void merge(const EdgeTopology& topo, const std::vector<Vec3>& positions, uint32_t removed,

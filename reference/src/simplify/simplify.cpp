@@ -583,6 +583,8 @@ void Simplifier::run(SimplifyResult* result) {
         if (a == kNone) continue;  // died in this batch (its ends are locked)
         const uint32_t b = topo_.target(h);
         if (vertex_[a].locked_in_batch == batch_number_ || vertex_[b].locked_in_batch == batch_number_) continue;
+        // The guard reads both ends' members after the checks below.
+        if (guarded_) guard_.prefetch(a, b);
         if (outdated(h)) {
           refreshEdge(h);
           if (edge_[h].direction == kNoDirection || edge_[h].cost > limit) continue;
