@@ -199,6 +199,10 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
   std::vector<std::vector<ReplayedCollapse>> replayed(collapses.batches.size());
   const bool snap = free_placement && options.move_detail > 0;
   std::vector<FanFace> kept_faces, fan_faces;
+  // Per vertex, the last collapse whose fan it starts a face of (x) or ends
+  // one at (y): a fan is open when some x is no face's y.
+  std::vector<uint64_t> ends_face(snap ? n : 0, 0);
+  uint64_t collapse_number = 0;
   for (size_t t = 0; t < collapses.batches.size(); ++t) {
     for (const HalfEdgeCollapse& c : collapses.batches[t]) {
       const uint32_t u = c.removed, v = c.kept;
@@ -247,8 +251,10 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
           for (uint32_t f : vertex_faces[v])
             if (alive[f]) fan_faces.push_back(rotatedTo(faces[f], v));
           // A boundary fan (some x is no face's y) keeps all its faces.
+          ++collapse_number;
+          for (const FanFace& f : fan_faces) ends_face[f.y] = collapse_number;
           for (const FanFace& f : fan_faces)
-            if (std::none_of(fan_faces.begin(), fan_faces.end(), [&](const FanFace& g) { return g.y == f.x; })) {
+            if (ends_face[f.x] != collapse_number) {
               kept_faces = fan_faces;
               break;
             }

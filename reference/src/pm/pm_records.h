@@ -311,16 +311,17 @@ std::string codeSplit(Coder& coder, PmContexts& ctx, ProgressiveMesh::Impl& s, B
     // fraction of an edge along it, and the encoder places vs on that grid.
     // A flag lets the encoder keep every step where sliding would take vs off
     // the planes of its triangles (a crease, a curved fan).
+    const std::array<int, 2> along = otherAxes(axis);
     int shift = h.move_detail ? moveShift(longestFaceEdge2(s.positions, ring), h.move_detail) : 0;
     if (shift > 0) {
       const int32_t mask = (int32_t{1} << shift) - 1;
-      const auto [t0, t1] = otherAxes(axis);
-      if (coder.bit(&ctx.move_fine, Coder::kEncoding && ((r->vs_move[t0] & mask) | (r->vs_move[t1] & mask)) != 0))
+      if (coder.bit(&ctx.move_fine,
+                    Coder::kEncoding && ((r->vs_move[along[0]] & mask) | (r->vs_move[along[1]] & mask)) != 0))
         shift = 0;
     }
     int64_t move[3] = {0, 0, 0};
     for (int t = 0; t < 2; ++t) {
-      const int k = otherAxes(axis)[t];
+      const int k = along[t];
       int32_t units = r->vs_move[k] >> shift;
       if (!codeSigned(coder, ctx.vs_move[t], &units)) return "a vs move is too long";
       move[k] = int64_t{units} * (int64_t{1} << shift);

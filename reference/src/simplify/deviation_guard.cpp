@@ -123,22 +123,19 @@ double DeviationGuard::cost(const EdgeTopology& topo, const std::vector<Vec3>& p
   double fan_area = 0.0;
   for (const Triangle& t : fan) fan_area += area(t);
   // d_out: a member nearer the fan than the farthest so far cannot change it.
-  double out2 = 0.0;
-  for (const uint32_t v : {kept, removed}) {
-    for (uint32_t i = 0; i < members_[v].count; ++i) {
-      const double d2 = fanDistance2(input_[members_[v].vertex[i]].position, fan, out2);
-      if (d2 > out2 && d2 != std::numeric_limits<double>::infinity()) out2 = d2;
-    }
-  }
   // d_in, from below: the input triangles around member m are at least
   // |x - m| - reach(m) away (reach: m's longest input edge). A bound, not the
   // distance, because reading those triangles took about as long again as
-  // the rest of the simplifier (turbine: +0.4 s); and what it is for, an optimum that overshoots a thin tip,
-  // lands many input edge lengths away, where the bound is nearly exact.
+  // the rest of the simplifier (turbine: +0.4 s); and what it is for, an
+  // optimum that overshoots a thin tip, lands many input edge lengths away,
+  // where the bound is nearly exact.
+  double out2 = 0.0;
   double in = std::numeric_limits<double>::infinity();
   for (const uint32_t v : {kept, removed}) {
     for (uint32_t i = 0; i < members_[v].count; ++i) {
       const InputVertex& m = input_[members_[v].vertex[i]];
+      const double d2 = fanDistance2(m.position, fan, out2);
+      if (d2 > out2 && d2 != std::numeric_limits<double>::infinity()) out2 = d2;
       const double gap = length(sub(x, m.position)) - m.reach;
       if (gap < in) in = gap;
     }
