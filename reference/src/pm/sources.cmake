@@ -12,7 +12,8 @@ set(MRSV_PM_ENCODE_SOURCES
 set(MRSV_PM_TESTS
   reference/tests/corner_table_test.cpp
   reference/tests/split_flags_test.cpp
-  reference/tests/move_grid_test.cpp)
+  reference/tests/move_grid_test.cpp
+  reference/tests/grid_point_test.cpp)
 
 # tools/bench/pm_decode_bench: Google Benchmark of decoding and level switching
 # on streams built from the shared meshes, so it needs the encoder and mrsv_io.
