@@ -137,79 +137,94 @@ std::array<int32_t, 3> snappedPlacement(const std::vector<std::array<int32_t, 3>
   return p;
 }
 
-// Whether a vertex's fan is open (the vertex is on the boundary): some face
-// starts at a neighbour x at which no face ends.
-bool fanIsOpen(const std::vector<FanFace>& fan) {
-  std::vector<uint32_t> ends;
-  ends.reserve(fan.size());
-  for (const FanFace& f : fan) ends.push_back(f.y);
-  std::sort(ends.begin(), ends.end());
-  for (const FanFace& f : fan)
-    if (!std::binary_search(ends.begin(), ends.end(), f.x)) return true;
-  return false;
-}
-
-// The grid point for a vertex whose exact place is p (in steps), given the
-// triangles around it (`fan`, with `position` in steps too). Rounding errs by
-// up to half a step across the surface as well as along it, and only the
-// part across it moves the surface. So of the 27 grid points around the
-// nearest one, this takes the one that leaves the surface least, measured
-// as a collapse measures it (by the area-weighted squared distances to the
-// planes of the fan's triangles through p; nearer p on ties), among those
-// no further from the fan's triangles than the nearest grid point is (so the
+// Grid points for vertices (decision D34). Rounding errs by up to half a
+// step across the surface as well as along it, and only the part across it
+// moves the surface. So of the 27 grid points around the nearest one, a
+// vertex takes the one that leaves the surface least, measured as a
+// collapse measures it (by the area-weighted squared distances to the planes
+// of the fan's triangles through the vertex's exact place), among those no
+// further from the fan's triangles than the nearest grid point is (so the
 // largest error does not grow where the fan is small or sharply bent). A
-// boundary vertex rounds as usual: along its surface it would move the
-// boundary. (Decision D34.)
-template <typename Point>
-std::array<int32_t, 3> gridPointNearSurface(const std::vector<Point>& position, const std::vector<FanFace>& fan,
-                                            const std::array<double, 3>& p, int32_t top) {
-  using simplify::Vec3;
-  auto onGrid = [top](double x) { return static_cast<int32_t>(std::clamp(x, 0.0, static_cast<double>(top))); };
-  const double nearest[3] = {std::nearbyint(p[0]), std::nearbyint(p[1]), std::nearbyint(p[2])};
-  const std::array<int32_t, 3> rounded = {onGrid(nearest[0]), onGrid(nearest[1]), onGrid(nearest[2])};
-  if (fan.empty() || fanIsOpen(fan)) return rounded;
+// boundary vertex takes the nearest point: along its surface it would move
+// the boundary.
+class GridPointChooser {
+ public:
+  GridPointChooser(uint32_t vertices, int32_t top) : ends_(vertices, 0), top_(top) {}
 
-  struct Plane {
-    Vec3 n;
-    double inverse_length;
-  };
-  std::vector<Plane> planes;
-  std::vector<simplify::Triangle> triangles;
-  double area_sum = 0.0;
-  const Vec3 at = {p[0], p[1], p[2]};
-  auto toVec3 = [](const auto& q) { return Vec3{double(q[0]), double(q[1]), double(q[2])}; };
-  for (const FanFace& f : fan) {
-    triangles.push_back(simplify::makeTriangle(at, toVec3(position[f.x]), toVec3(position[f.y])));
-    const Vec3 n = simplify::cross(triangles.back().ab, triangles.back().ac);
-    const double length = simplify::length(n);
-    if (!(length > 0.0)) continue;
-    area_sum += length;
-    planes.push_back({n, 1.0 / length});
+  // Whether a vertex's fan is open (the vertex is on the boundary): some
+  // face starts at a neighbour at which no face ends. Linear in the fan.
+  bool open(const std::vector<FanFace>& fan) {
+    ++round_;
+    for (const FanFace& f : fan) ends_[f.y] = round_;
+    for (const FanFace& f : fan)
+      if (ends_[f.x] != round_) return true;
+    return false;
   }
-  auto offset = [&](const std::array<int32_t, 3>& q) { return Vec3{q[0] - p[0], q[1] - p[1], q[2] - p[2]}; };
-  const double bound = simplify::fanDistance2(toVec3(rounded), triangles, 0.0);
-  std::array<int32_t, 3> best = rounded;
-  double best_error = INFINITY;
-  for (int candidate = 0; candidate < 27; ++candidate) {
-    const std::array<int32_t, 3> q = {onGrid(nearest[0] + candidate % 3 - 1), onGrid(nearest[1] + candidate / 3 % 3 - 1),
-                                      onGrid(nearest[2] + candidate / 9 - 1)};
-    const Vec3 d = offset(q);
+
+  // The grid point for a vertex whose exact place is p (in steps), given the
+  // triangles around it (`fan`, with `position` in steps too).
+  template <typename Point>
+  std::array<int32_t, 3> choose(const std::vector<Point>& position, const std::vector<FanFace>& fan,
+                                const std::array<double, 3>& p, bool open) {
+    using simplify::Vec3;
+    auto onGrid = [this](double x) { return static_cast<int32_t>(std::clamp(x, 0.0, static_cast<double>(top_))); };
+    const double nearest[3] = {std::nearbyint(p[0]), std::nearbyint(p[1]), std::nearbyint(p[2])};
+    const std::array<int32_t, 3> rounded = {onGrid(nearest[0]), onGrid(nearest[1]), onGrid(nearest[2])};
+    if (fan.empty() || open) return rounded;
+
+    // The error of an offset d from p is the quadratic form d' A d, with A
+    // the sum over the fan's triangles of n n' / |n| (n the twice-area
+    // normal: area times squared distance to the plane, up to a factor 2)
+    // plus the tie-break's multiple of the identity.
+    double a[6] = {0, 0, 0, 0, 0, 0};  // a00 a01 a02 a11 a12 a22
+    double area_sum = 0.0;
+    const Vec3 at = {p[0], p[1], p[2]};
+    auto toVec3 = [](const auto& q) { return Vec3{double(q[0]), double(q[1]), double(q[2])}; };
+    for (const FanFace& f : fan) {
+      const Vec3 n = simplify::cross(simplify::sub(toVec3(position[f.x]), at), simplify::sub(toVec3(position[f.y]), at));
+      const double length = simplify::length(n);
+      if (!(length > 0.0)) continue;
+      area_sum += length;
+      const double w = 1.0 / length;
+      a[0] += w * n[0] * n[0], a[1] += w * n[0] * n[1], a[2] += w * n[0] * n[2];
+      a[3] += w * n[1] * n[1], a[4] += w * n[1] * n[2], a[5] += w * n[2] * n[2];
+    }
     // The distance from p itself weighs a tenth of a plane's: on a flat fan
     // it prefers the nearest point, and elsewhere it keeps the point from
     // straying along the surface to gain little across it (with a hundredth,
     // the largest error at full resolution grew by up to 40 %).
-    double error = 0.1 * area_sum * simplify::dot(d, d);
-    for (const Plane& plane : planes) {
-      const double across = simplify::dot(plane.n, d);
-      error += across * across * plane.inverse_length;
+    a[0] += 0.1 * area_sum, a[3] += 0.1 * area_sum, a[5] += 0.1 * area_sum;
+    std::array<int32_t, 3> candidate[27];
+    double error[27];
+    for (int i = 0; i < 27; ++i) {
+      candidate[i] = {onGrid(nearest[0] + i % 3 - 1), onGrid(nearest[1] + i / 3 % 3 - 1), onGrid(nearest[2] + i / 9 - 1)};
+      const double x = candidate[i][0] - p[0], y = candidate[i][1] - p[1], z = candidate[i][2] - p[2];
+      error[i] = x * (a[0] * x + 2.0 * (a[1] * y + a[2] * z)) + y * (a[3] * y + 2.0 * a[4] * z) + z * a[5] * z;
     }
-    if (error < best_error && simplify::fanDistance2(toVec3(q), triangles, bound) <= bound) {
-      best_error = error;
-      best = q;
+    // The least error among the points within the bound, tried in order of
+    // error: the first nearly always is. (The nearest point is within it.)
+    double bound = -1.0;  // found only when a point other than the nearest is best
+    for (;;) {
+      const int best = static_cast<int>(std::min_element(error, error + 27) - error);
+      if (candidate[best] == rounded) return rounded;
+      if (bound < 0.0) {
+        triangles_.clear();
+        for (const FanFace& f : fan)
+          triangles_.push_back(simplify::makeTriangle(at, toVec3(position[f.x]), toVec3(position[f.y])));
+        bound = simplify::fanDistance2(toVec3(rounded), triangles_, 0.0);
+      }
+      if (simplify::fanDistance2(toVec3(candidate[best]), triangles_, bound) <= bound) return candidate[best];
+      error[best] = INFINITY;
     }
   }
-  return best;
-}
+
+ private:
+  // Per vertex, the round of open() in which a face of the fan ended at it.
+  std::vector<uint64_t> ends_;
+  uint64_t round_ = 0;
+  int32_t top_;
+  std::vector<simplify::Triangle> triangles_;
+};
 
 }  // namespace
 
@@ -264,6 +279,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
       vertex_faces[v].push_back(f);
     }
   std::vector<std::array<int32_t, 3>> position(n);
+  GridPointChooser grid_points(n, axis[0].top);
   {
     // Each input vertex goes to the grid point nearest its surface.
     std::vector<std::array<double, 3>> in_steps(n);
@@ -273,7 +289,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
     for (uint32_t v = 0; v < n; ++v) {
       fan.clear();
       for (uint32_t f : vertex_faces[v]) fan.push_back(rotatedTo(faces[f], v));
-      position[v] = gridPointNearSurface(in_steps, fan, in_steps[v], axis[0].top);
+      position[v] = grid_points.choose(in_steps, fan, in_steps[v], grid_points.open(fan));
     }
   }
   // Where each vertex is before quantisation (free placement).
@@ -284,10 +300,6 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
   std::vector<std::vector<ReplayedCollapse>> replayed(collapses.batches.size());
   const bool snap = free_placement && options.move_detail > 0;
   std::vector<FanFace> kept_faces, fan_faces;
-  // Per vertex, the last collapse whose fan it starts a face of (x) or ends
-  // one at (y): a fan is open when some x is no face's y.
-  std::vector<uint64_t> ends_face(snap ? n : 0, 0);
-  uint64_t collapse_number = 0;
   for (size_t t = 0; t < collapses.batches.size(); ++t) {
     for (const HalfEdgeCollapse& c : collapses.batches[t]) {
       const uint32_t u = c.removed, v = c.kept;
@@ -331,6 +343,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
         fan_faces.clear();
         for (uint32_t f : vertex_faces[v])
           if (alive[f]) fan_faces.push_back(rotatedTo(faces[f], v));
+        const bool open = grid_points.open(fan_faces);
         // A kept vertex that stays, or takes the removed one's place, keeps
         // that vertex's grid point.
         std::array<int32_t, 3> optimum;
@@ -341,20 +354,13 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
         } else {
           std::array<double, 3> at;
           for (int k = 0; k < 3; ++k) at[k] = (c.kept_position[k] - axis[k].origin) / axis[k].step;
-          optimum = gridPointNearSurface(position, fan_faces, at, axis[0].top);
+          optimum = grid_points.choose(position, fan_faces, at, open);
         }
         exact[v] = c.kept_position;
         if (!snap) {
           position[v] = optimum;
         } else {
-          // A boundary fan (some x is no face's y) keeps all its faces.
-          ++collapse_number;
-          for (const FanFace& f : fan_faces) ends_face[f.y] = collapse_number;
-          for (const FanFace& f : fan_faces)
-            if (ends_face[f.x] != collapse_number) {
-              kept_faces = fan_faces;
-              break;
-            }
+          if (open) kept_faces = fan_faces;  // a boundary vertex keeps all its faces
           position[v] = snappedPlacement(position, fan_faces, kept_faces, optimum, position[v],
                                          options.position_bits, options.move_detail);
         }
