@@ -783,6 +783,7 @@ TEST(Simplify, QuantileRuleMakesFewerBatches) {
   SimplifyOptions options;
   options.placement = Placement::kFree;
   options.deviation_weight = 0.0;
+  options.coarse_vertex_fraction = 0.0;  // one batch rule all the way
   options.target_triangles = mesh.triangles.size() / 100;
   const SimplifyResult with_quantile = simplifyOrFail(mesh, options);
   options.batch_min_fraction = 0.0;

@@ -66,6 +66,18 @@ struct SimplifyOptions {
   double batch_cost_ratio = 8.0;
   double batch_min_fraction = 0.05;
   double batch_max_fraction = 1.0;
+  // Once fewer than coarse_vertex_fraction of the input's vertices are left,
+  // batches follow coarse_batch_cost_ratio and coarse_batch_min_fraction
+  // instead: nearer the greedy order (spec decision D35). A level between
+  // two batches decodes the later batch only in part, and in vertex order,
+  // not cost order, so it may hold that batch's dearest collapses; at coarse
+  // levels, where a collapse is a large part of the error, narrower batches
+  // lowered the RMS error around 1 % of the faces by 3 to 4 % on three of
+  // the four test meshes (1 % higher on the fourth), and the Hausdorff
+  // distance by 12 to 25 %, for endpoint streams about 1 % larger.
+  double coarse_vertex_fraction = 0.05;
+  double coarse_batch_cost_ratio = 2.0;
+  double coarse_batch_min_fraction = 0.02;
 };
 
 struct HalfEdgeCollapse {
