@@ -72,9 +72,9 @@ struct SimplifyOptions {
   // two batches decodes the later batch only in part, and in vertex order,
   // not cost order, so it may hold that batch's dearest collapses; at coarse
   // levels, where a collapse is a large part of the error, narrower batches
-  // lowered the RMS error around 1 % of the faces by 3 to 4 % on three of
-  // the four test meshes (1 % higher on the fourth), and the Hausdorff
-  // distance by 12 to 25 %, for endpoint streams about 1 % larger.
+  // lowered the RMS error around 1 % of the faces by 3 to 4 % and the
+  // Hausdorff distance by 12 to 25 % on three of the four test meshes (on
+  // the fourth they rose 1 and 12 %), for endpoint streams about 1 % larger.
   double coarse_vertex_fraction = 0.05;
   double coarse_batch_cost_ratio = 2.0;
   double coarse_batch_min_fraction = 0.02;
