@@ -116,7 +116,8 @@ int runMeshEncode(int argc, char** argv) {
   if (args.has("move-detail")) {
     if (!parseUint64(args.value("move-detail"), &number) || number > 30)
       return fail(cmd, "--move-detail must be a whole number from 0 to 30", kExitUsage);
-    if (encode.placement != Placement::kFree) return fail(cmd, "--move-detail needs free placement (the default), not --placement endpoint", kExitUsage);
+    if (encode.placement != Placement::kFree)
+      return fail(cmd, "--move-detail needs free placement (the default), not --placement endpoint", kExitUsage);
     encode.move_detail = static_cast<uint8_t>(number);
   }
   if (args.has("bits")) {

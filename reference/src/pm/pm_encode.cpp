@@ -25,8 +25,10 @@ struct Quantiser {
     top = static_cast<int32_t>((int64_t{1} << bits) - 1);
     step = hi > lo ? (hi - lo) / top : 1.0;
   }
+  // v in steps from the origin, not rounded.
+  double inSteps(double v) const { return (v - origin) / step; }
   int32_t operator()(double v) const {
-    double q = std::nearbyint((v - origin) / step);
+    double q = std::nearbyint(inSteps(v));
     return static_cast<int32_t>(std::clamp(q, 0.0, static_cast<double>(top)));
   }
 };
@@ -54,6 +56,15 @@ struct FanFace {
 FanFace rotatedTo(const std::array<uint32_t, 3>& tri, uint32_t v) {
   const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
   return {tri[(k + 1) % 3], tri[(k + 2) % 3]};
+}
+
+simplify::Vec3 toVec3(const std::array<int32_t, 3>& q) { return {double(q[0]), double(q[1]), double(q[2])}; }
+const simplify::Vec3& toVec3(const simplify::Vec3& q) { return q; }
+
+// The twice-area normal (x - p) x (y - p) of fan face f with the vertex at p.
+template <typename Point>
+simplify::Vec3 faceNormal(const std::vector<Point>& position, const FanFace& f, const simplify::Vec3& p) {
+  return simplify::cross(simplify::sub(toVec3(position[f.x]), p), simplify::sub(toVec3(position[f.y]), p));
 }
 
 // spec 6.7.3 step 1, from the encoder's side: where the kept vertex goes.
@@ -96,17 +107,13 @@ std::array<int32_t, 3> snappedPlacement(const std::vector<std::array<int32_t, 3>
   // How far q lies off the planes of the fan's triangles (with v at p), in
   // quantisation steps: the part of a slide that changes the surface.
   auto offPlanes = [&](const std::array<int32_t, 3>& q) {
+    const simplify::Vec3 at = toVec3(p);
+    const simplify::Vec3 d = simplify::sub(toVec3(q), at);
     double worst = 0.0;
     for (const FanFace& f : fan) {
-      double e0[3], e1[3], d[3];
-      for (int k = 0; k < 3; ++k) {
-        e0[k] = double(position[f.x][k]) - p[k];
-        e1[k] = double(position[f.y][k]) - p[k];
-        d[k] = double(q[k]) - p[k];
-      }
-      const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (length > 0.0) worst = std::max(worst, std::fabs(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / length);
+      const simplify::Vec3 n = faceNormal(position, f, at);
+      const double length = simplify::length(n);
+      if (length > 0.0) worst = std::max(worst, std::fabs(simplify::dot(n, d)) / length);
     }
     return worst;
   };
@@ -179,9 +186,8 @@ class GridPointChooser {
     double a[6] = {0, 0, 0, 0, 0, 0};  // a00 a01 a02 a11 a12 a22
     double area_sum = 0.0;
     const Vec3 at = {p[0], p[1], p[2]};
-    auto toVec3 = [](const auto& q) { return Vec3{double(q[0]), double(q[1]), double(q[2])}; };
     for (const FanFace& f : fan) {
-      const Vec3 n = simplify::cross(simplify::sub(toVec3(position[f.x]), at), simplify::sub(toVec3(position[f.y]), at));
+      const Vec3 n = faceNormal(position, f, at);
       const double length = simplify::length(n);
       if (!(length > 0.0)) continue;
       area_sum += length;
@@ -284,7 +290,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
     // Each input vertex goes to the grid point nearest its surface.
     std::vector<std::array<double, 3>> in_steps(n);
     for (uint32_t v = 0; v < n; ++v)
-      for (int k = 0; k < 3; ++k) in_steps[v][k] = (mesh.positions[v][k] - axis[k].origin) / axis[k].step;
+      for (int k = 0; k < 3; ++k) in_steps[v][k] = axis[k].inSteps(mesh.positions[v][k]);
     std::vector<FanFace> fan;
     for (uint32_t v = 0; v < n; ++v) {
       fan.clear();
@@ -353,7 +359,7 @@ bool encodeProgressiveMesh(const TriangleMesh& mesh, const SimplifyResult& colla
           optimum = position[u];
         } else {
           std::array<double, 3> at;
-          for (int k = 0; k < 3; ++k) at[k] = (c.kept_position[k] - axis[k].origin) / axis[k].step;
+          for (int k = 0; k < 3; ++k) at[k] = axis[k].inSteps(c.kept_position[k]);
           optimum = grid_points.choose(position, fan_faces, at, open);
         }
         exact[v] = c.kept_position;

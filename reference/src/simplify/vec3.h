@@ -1,4 +1,5 @@
-// The 3-vector arithmetic the simplifier's costs, checks and guard share.
+// The 3-vector arithmetic the simplifier's costs, checks and guard share (and
+// the PM encoder's choice of grid points, through triangle_distance.h).
 #pragma once
 
 #include <array>
