@@ -107,9 +107,9 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     cow_stream = encode(cow, ["--bits", "14", "--placement", "endpoint"])
     g.valid("mesh_cow", cow_stream, "6", "the Viewpoint cow (closed), 14-bit positions, quadric cost, vs stays")
     prefixes("mesh_cow", cow_stream, "6.1, 6.7", "the cow")
-    g.valid("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free"]), "6.7.3",
+    g.valid("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1"]), "6.7.3",
             "the cow with free placement: every split also moves vs, along its plane on the grid of move_detail 4")
-    g.valid("mesh_cow_free_exact", encode(cow, ["--bits", "12", "--placement", "free", "--move-detail", "0"]),
+    g.valid("mesh_cow_free_exact", encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1", "--move-detail", "0"]),
             "6.7.3", "the cow with free placement and move_detail 0: every move to the quantisation step")
     g.valid("mesh_cow_paper", encode(cow, ["--bits", "10", "--cost", "paper", "--placement", "endpoint"]), "6",
             "the cow simplified with the paper's energies (50, 1, 5), 10-bit positions")

@@ -113,7 +113,12 @@ expect 2 "$mrsv" decode --faces 5 --vertices 5 "$work/cow.mrsv" "$work/x.obj"; o
 cut=$(python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))["chunks"][5]; print(c["offset"] + c["length"] // 2)' "$work/stdout.json" 2>/dev/null)
 head -c "$cut" "$work/cow.mrsv" >"$work/cow_cut.mrsv"
 expect 1 "$mrsv" check "$work/cow_cut.mrsv"; one_line_stderr
-expect 0 "$mrsv" encode --help "$work/x.obj"; stdout_has "progressive mesh"
+expect 0 "$mrsv" encode --help "$work/x.obj"; stdout_has "progressive mesh"; stdout_has "--free-from"
+# Moves from the first collapse (D36) cost bytes.
+expect 0 "$mrsv" encode --quiet --bits 14 --free-from 1 "$cow" "$work/cow_all.mrsv"
+if [ "$(stat -c %s "$work/cow_all.mrsv")" -gt "$(stat -c %s "$work/cow.mrsv")" ]; then ok; else bad "--free-from 1 did not give a larger stream"; fi
+expect 2 "$mrsv" encode --free-from 1.5 "$cow" "$work/x.mrsv"; stderr_has "from 0 to 1"; one_line_stderr
+expect 2 "$mrsv" encode --placement endpoint --free-from 0.5 "$cow" "$work/x.mrsv"; stderr_has "needs free placement"
 
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -652,6 +652,38 @@ TEST(Simplify, EndpointPlacementKeepsPositions) {
   }
 }
 
+TEST(Simplify, FreePlacementMovesOnlyBelowItsFraction) {
+  // Kept vertices stay in a batch that starts with more than
+  // free_placement_below of the input's vertices, and move after that.
+  const TriangleMesh mesh = makeCow();
+  for (double below : {0.7, 1.0}) {
+    SimplifyOptions options;
+    options.placement = Placement::kFree;
+    options.free_placement_below = below;
+    options.target_triangles = mesh.triangles.size() / 10;
+    const SimplifyResult result = simplifyOrFail(mesh, options);
+    std::vector<Vec3> positions = mesh.positions;
+    size_t live = mesh.positions.size();
+    size_t moved[2] = {0, 0}, collapses[2] = {0, 0};  // by whether the batch may move
+    for (const auto& batch : result.batches) {
+      const bool moving = static_cast<double>(live) <= below * static_cast<double>(mesh.positions.size());
+      for (const HalfEdgeCollapse& c : batch) {
+        moved[moving] += c.kept_position != positions[c.kept];
+        ++collapses[moving];
+        positions[c.kept] = c.kept_position;
+      }
+      live -= batch.size();
+    }
+    EXPECT_EQ(moved[0], 0u) << below;
+    EXPECT_GT(collapses[1], mesh.positions.size() / 2) << below;
+    // Measured: 0.7 moves 90 % of its collapses that may move.
+    EXPECT_GT(moved[1], collapses[1] / 2) << below;
+    if (below == 1.0) {
+      EXPECT_EQ(collapses[0], 0u);
+    }
+  }
+}
+
 // The input's positions with the collapses applied, and its surviving
 // triangles.
 std::vector<Tri> applyCollapses(const TriangleMesh& mesh, const SimplifyResult& result,

@@ -180,6 +180,9 @@ class Simplifier {
   void collapse(uint32_t h, uint32_t removed, uint32_t kept);
 
   const SimplifyOptions& options_;
+  // Whether kept vertices move yet (free placement only, once at most
+  // free_placement_below of the input's vertices are left).
+  bool moving_ = false;
   EdgeTopology topo_;
   std::vector<Vec3> positions_;
   // Per vertex: its memoryless quadric and its fan's volume term, side by
@@ -225,6 +228,8 @@ class Simplifier {
 
 bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
   if (!topo_.build(mesh, error)) return false;
+  // As run() would find at once.
+  moving_ = options_.placement == Placement::kFree && options_.free_placement_below >= 1.0;
   positions_ = mesh.positions;
   for (const Vec3& p : positions_) {
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
@@ -298,7 +303,7 @@ bool Simplifier::init(const TriangleMesh& mesh, std::string* error) {
 
 bool Simplifier::place(uint32_t removed, uint32_t kept, uint32_t h, Vec3* position) const {
   const Vec3& pk = positions_[kept];
-  if (options_.placement == Placement::kEndpoint) {
+  if (!moving_) {
     *position = pk;
     return false;
   }
@@ -528,7 +533,14 @@ void Simplifier::run(SimplifyResult* result) {
 
   bool stop = topo_.liveTriangles() <= target;
   std::vector<HalfEdgeCollapse> batch;
+  const double free_below = options_.free_placement_below * static_cast<double>(live_vertices_);
   while (!stop) {
+    if (options_.placement == Placement::kFree && !moving_ && static_cast<double>(live_vertices_) <= free_below) {
+      // Free placement starts: every candidate is priced again with it.
+      moving_ = true;
+      for (uint32_t h : edges_)
+        if (edge_[h].live) refreshEdge(h);
+    }
     ++batch_number_;
     batch.clear();
     const bool coarse = static_cast<double>(live_vertices_) < coarse_below;
