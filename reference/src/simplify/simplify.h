@@ -80,13 +80,13 @@ struct SimplifyOptions {
   double coarse_batch_min_fraction = 0.02;
   // Free placement moves kept vertices only in batches that start with at
   // most this fraction of the input's vertices (1: from the first collapse);
-  // before, they stay, as with endpoint placement (spec decision D36). A move costs
-  // about 12 bits a split, and the first collapses, where most splits are,
-  // gain little by it: a kept vertex moves again whenever a later collapse
-  // keeps it. From 0.7 the streams were 6 to 12 % smaller at 16 bits with the
-  // RMS error at 10 % and 1 % of the faces within -2.4 to +0.6 % (geometric
-  // mean over five levels each); from 0.5, 14 to 18 % smaller, but the
-  // bunny's 1 % levels 11 % worse.
+  // before, they stay, as with endpoint placement (spec decision D36). A move
+  // costs about 16 of the 46 bits of a split (bunny, 14 bits), and what the
+  // first collapses gain by it does not last: a kept vertex moves again
+  // whenever a later collapse keeps it. From 0.7 the streams were 6 to 12 %
+  // smaller at 16 bits with the RMS error at 10 % and 1 % of the faces within
+  // -2.4 to +0.6 % (geometric mean over five levels each); from 0.5, 14 to
+  // 18 % smaller, but the bunny's 1 % levels 11 % worse.
   double free_placement_below = 0.7;
 };
 
