@@ -4,7 +4,7 @@
 Parts (see tools/bench/README.md for the exact definitions and commands):
   1. quality at 10 % and 1 % of the faces: symmetric Hausdorff and RMS distance (relative to
      the bounding-box diagonal, all by `mrsv compare`) of MRSV's decoded mesh (`mrsv encode
-     --bits 14`, then `mrsv decode --faces N`) against CGAL edge_collapse with Lindstrom-Turk
+     --bits 14` or --bits B, then `mrsv decode --faces N`) against CGAL edge_collapse with Lindstrom-Turk
      cost and placement and against meshopt_simplify, at the same face count
   2. build time: `mrsv encode` (simplification to the base mesh + stream coding) and MRSV's
      simplifier alone against meshopt_simplify to 1 % and a meshopt chain of as many levels
@@ -18,6 +18,7 @@ Standard library only.
   /usr/bin/python3 tools/bench/mesh_bench.py                  # the four meshes (5-7 min on 2 cores)
   /usr/bin/python3 tools/bench/mesh_bench.py --quick          # bunny only (~40 s)
   /usr/bin/python3 tools/bench/mesh_bench.py --datasets horse,turbine --runs 5
+  /usr/bin/python3 tools/bench/mesh_bench.py --bits 16        # the encoder's default quantisation
 """
 import argparse
 import csv
@@ -38,7 +39,7 @@ REPO = Path(__file__).resolve().parents[2]
 LEVELS = [("10%", 10), ("1%", 1)]  # label, percent of the (repaired) input's triangles
 MAIN = ["bunny", "armadillo", "horse", "turbine"]  # the meshes of issue 3, in this order
 QUICK = ["bunny"]
-BITS = 14  # quantisation of MRSV's and Draco's positions (bits over the longest bbox side)
+GOAL_BITS = 14  # the size goal's quantisation (bits over the longest bbox side); --bits changes it
 # MRSV encoder variants: the default and the two extra rows asked for.
 VARIANTS = [("mrsv", []), ("mrsv-endpoint", ["--placement", "endpoint"]), ("mrsv-paper", ["--cost", "paper"])]
 SIZE_GOAL = 1.3  # issue 3: MRSV stream at most 1.3x Draco's
@@ -119,7 +120,7 @@ def peers(args, method, src, out, faces=None, runs=1, chain=None):
     cmd = [args.peers, method, src] + ([out] if out else [])
     if faces is not None:
         cmd += ["--faces", faces]
-    cmd += ["--runs", runs]
+    cmd += ["--runs", runs, "--bits", args.bits]
     if chain:
         cmd += ["--chain", chain]
     _, _, o, _ = run(cmd)
@@ -130,7 +131,7 @@ def mrsv_encode(args, src, opts, out, runs):
     """Best wall time of `runs` encodes, with the encoder's own report of that run."""
     best = None
     for _ in range(runs):
-        wall, cpu, _, err = run([args.mrsv, "encode", src, out, "--bits", BITS] + opts)
+        wall, cpu, _, err = run([args.mrsv, "encode", src, out, "--bits", args.bits] + opts)
         m = ENC_RE.search(err)
         if not m:
             raise ToolError(f"mrsv encode: report not understood: {err.strip()[-300:]}")
@@ -213,7 +214,7 @@ def bench_mesh(args, name, src, wd, res):
                 res["decode"].append(dict(mesh=name, bytes=e["bytes"], splits=d["splits"], wall_s=d["wall_s"],
                                           cpu_s=d["cpu_s"], decode_s=d["decode_s"], runs=args.runs,
                                           splits_per_s=d["splits"] / d["decode_s"] if d["decode_s"] else None))
-                quality("full", nf, "mrsv", full, note=f"--bits {BITS} quantisation only")
+                quality("full", nf, "mrsv", full, note=f"--bits {args.bits} quantisation only")
 
     # The peers and MRSV's simplifier alone, in-process, to each face count.
     for level, target in targets.items():
@@ -255,13 +256,13 @@ def bench_mesh(args, name, src, wd, res):
         drc, dply = wd / "draco.drc", wd / "draco.ply"
 
         def draco():
-            wall, cpu, _, _ = run(["draco_encoder", "-i", rep, "-o", drc, "-cl", "7", "-qp", BITS])
+            wall, cpu, _, _ = run(["draco_encoder", "-i", rep, "-o", drc, "-cl", "7", "-qp", args.bits])
             run(["draco_decoder", "-i", drc, "-o", dply])
             return dict(bytes=drc.stat().st_size, wall_s=wall)
         d = step("draco", draco)
         if d:
             res["draco"].append(dict(mesh=name, **d))
-            quality("full", nf, "draco", dply, note=f"-qp {BITS} quantisation only")
+            quality("full", nf, "draco", dply, note=f"-qp {args.bits} quantisation only")
 
 
 # ----------------------------------------------------------------------------- tables
@@ -317,7 +318,7 @@ def report(args, res, names, info):
             for m in QUALITY_ORDER:
                 r = q.get((n, level, m))
                 if r:
-                    rows.append([n, level, QUALITY_LABEL[m], r["target"], r["triangles"], sci(r["hausdorff"]),
+                    rows.append([n, level, QUALITY_LABEL[m].replace("-qp 14", f"-qp {args.bits}"), r["target"], r["triangles"], sci(r["hausdorff"]),
                                  sci(r["rms"]), r["note"]])
     txt.append("")
     txt.append(table(["mesh", "level", "method", "target", "faces", "hausdorff/diag", "rms/diag", "note"], rows,
@@ -335,7 +336,7 @@ def report(args, res, names, info):
                          ratio(m["hausdorff"], mo and mo["hausdorff"]), ratio(m["rms"], mo and mo["rms"])])
     txt.append("")
     txt.append(table(["mesh", "level", "H mrsv/lt", "RMS mrsv/lt", "H mrsv/meshopt", "RMS mrsv/meshopt"], rows,
-                     "   MRSV (encode --bits 14 + decode --faces N) over peer; > 1: MRSV's mesh is further away",
+                     f"   MRSV (encode --bits {args.bits} + decode --faces N) over peer; > 1: MRSV's mesh is further away",
                      text_cols=2))
 
     s = {(r["mesh"], r["level"], r["method"]): r for r in res["simplify"]}
@@ -364,7 +365,7 @@ def report(args, res, names, info):
                      "   meshopt 1%: meshopt_simplify to 1 %. meshopt chain: as many levels as the MRSV stream has "
                      "batches, each from the one before, down to MRSV's base mesh.\n"
                      "   mrsv simpl 1%: MRSV's simplifier alone to 1 %. mrsv encoder: simplifyMesh() to the base mesh + "
-                     "encodeProgressiveMesh(), i.e. `mrsv encode --bits 14` without I/O.\n"
+                     f"encodeProgressiveMesh(), i.e. `mrsv encode --bits {args.bits}` without I/O.\n"
                      "   Ratios: simpl/meshopt = mrsv simpl 1% / meshopt 1% (like for like); enc/meshopt = mrsv encoder "
                      "/ meshopt 1%; enc/chain = mrsv encoder / meshopt chain"))
     txt.append("")
@@ -393,8 +394,9 @@ def report(args, res, names, info):
     txt.append("")
     txt.append(table(["mesh", "vertices", "faces", "mrsv B", "bits/v", "endpoint B", "bits/v", "paper B", "draco B",
                       "bits/v", "mrsv/draco", f"<= {SIZE_GOAL}", "endpoint/draco", f"<= {SIZE_GOAL}"], rows,
-                     f"3. Size: whole stream at --bits {BITS} (full resolution) vs draco_encoder -cl 7 -qp {BITS} "
-                     f"on the same repaired mesh; goal mrsv/draco <= {SIZE_GOAL}"))
+                     f"3. Size: whole stream at --bits {args.bits} (full resolution) vs draco_encoder -cl 7 -qp {args.bits} "
+                     f"on the same repaired mesh; goal mrsv/draco <= {SIZE_GOAL}" +
+                     ("" if args.bits == GOAL_BITS else f" (stated at {GOAL_BITS} bits)")))
 
     rows = []
     for r in res["decode"]:
@@ -478,6 +480,8 @@ def main():
     ap.add_argument("--runs", type=int, default=3, help="timed runs, the best is kept (3)")
     ap.add_argument("--samples", type=int, default=300000, help="mrsv compare --samples (300000)")
     ap.add_argument("--seed", type=int, default=1, help="mrsv compare --seed (1)")
+    ap.add_argument("--bits", type=int, default=GOAL_BITS,
+                    help=f"position bits of every MRSV stream and Draco's -qp ({GOAL_BITS}, the size goal's; the encoder's own default is 16)")
     ap.add_argument("--no-draco", action="store_true", help="skip the size comparison with Draco")
     ap.add_argument("--tmp", type=Path, default=None, help="parent of the temp dir (system default)")
     args = ap.parse_args()
