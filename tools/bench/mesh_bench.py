@@ -305,7 +305,7 @@ def write_csv(path, rows, keys):
 QUALITY_ORDER = ["mrsv", "mrsv-endpoint", "mrsv-paper", "mrsv-simplify", "lt", "meshopt", "draco"]
 QUALITY_LABEL = {"mrsv": "mrsv (encode+decode)", "mrsv-endpoint": "mrsv --placement endpoint", "mrsv-paper": "mrsv --cost paper",
                  "mrsv-simplify": "mrsv simplifier, unquantised", "lt": "cgal lindstrom-turk",
-                 "meshopt": "meshopt_simplify", "draco": "draco -qp 14"}
+                 "meshopt": "meshopt_simplify", "draco": "draco -qp {bits}"}  # {bits}: --bits
 
 
 def report(args, res, names, info):
@@ -318,7 +318,7 @@ def report(args, res, names, info):
             for m in QUALITY_ORDER:
                 r = q.get((n, level, m))
                 if r:
-                    rows.append([n, level, QUALITY_LABEL[m].replace("-qp 14", f"-qp {args.bits}"), r["target"], r["triangles"], sci(r["hausdorff"]),
+                    rows.append([n, level, QUALITY_LABEL[m].format(bits=args.bits), r["target"], r["triangles"], sci(r["hausdorff"]),
                                  sci(r["rms"]), r["note"]])
     txt.append("")
     txt.append(table(["mesh", "level", "method", "target", "faces", "hausdorff/diag", "rms/diag", "note"], rows,

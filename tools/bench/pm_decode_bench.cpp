@@ -157,17 +157,19 @@ bool buildStreams(const std::string& dir, const std::string& file, std::vector<S
     Placement placement;
     int bits;
   };
-  const int default_bits = PmEncodeOptions{}.position_bits;
   SimplifyResult collapses[2];  // by placement: endpoint, free
-  for (const Variant v : {Variant{Placement::kFree, default_bits}, Variant{Placement::kFree, 14},
-                          Variant{Placement::kEndpoint, 14}}) {
-    const bool free = v.placement == Placement::kFree;
+  for (const Placement placement : {Placement::kEndpoint, Placement::kFree}) {
     SimplifyOptions simplify;
-    simplify.placement = v.placement;
-    if (collapses[free].batches.empty() && !simplifyMesh(mesh, simplify, &collapses[free], &error)) {
+    simplify.placement = placement;
+    if (!simplifyMesh(mesh, simplify, &collapses[placement == Placement::kFree], &error)) {
       std::fprintf(stderr, "pm_decode_bench: %s: %s\n", file.c_str(), error.c_str());
       return false;
     }
+  }
+  const int default_bits = PmEncodeOptions{}.position_bits;
+  for (const Variant v : {Variant{Placement::kFree, default_bits}, Variant{Placement::kFree, 14},
+                          Variant{Placement::kEndpoint, 14}}) {
+    const bool free = v.placement == Placement::kFree;
     PmEncodeOptions options;
     options.placement = v.placement;
     options.position_bits = static_cast<uint8_t>(v.bits);
