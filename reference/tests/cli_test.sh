@@ -119,6 +119,11 @@ expect 0 "$mrsv" encode --quiet --bits 14 --free-from 1 "$cow" "$work/cow_all.mr
 if [ "$(stat -c %s "$work/cow_all.mrsv")" -gt "$(stat -c %s "$work/cow.mrsv")" ]; then ok; else bad "--free-from 1 did not give a larger stream"; fi
 expect 2 "$mrsv" encode --free-from 1.5 "$cow" "$work/x.mrsv"; stderr_has "from 0 to 1"; one_line_stderr
 expect 2 "$mrsv" encode --placement endpoint --free-from 0.5 "$cow" "$work/x.mrsv"; stderr_has "needs free placement"
+# Wider batches near full resolution (D37) code fewer split flags.
+expect 0 "$mrsv" encode --quiet --bits 14 --wide-batches 0.3 "$cow" "$work/cow_wide.mrsv"
+if [ "$(stat -c %s "$work/cow_wide.mrsv")" -lt "$(stat -c %s "$work/cow.mrsv")" ]; then ok; else bad "--wide-batches 0.3 did not give a smaller stream"; fi
+expect 0 "$mrsv" decode --quiet --fraction 0.1 "$work/cow_wide.mrsv" "$work/cow_wide10.ply"
+expect 2 "$mrsv" encode --wide-batches -0.1 "$cow" "$work/x.mrsv"; stderr_has "from 0 to 1"; one_line_stderr
 
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

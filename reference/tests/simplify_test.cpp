@@ -823,6 +823,32 @@ TEST(Simplify, QuantileRuleMakesFewerBatches) {
   EXPECT_LT(with_quantile.batches.size() * 4, ratio_only.batches.size() * 3);
 }
 
+TEST(Simplify, WideBatchesNearFullResolutionMakeFewerBatchesThere) {
+  // D37: while more than fine_vertex_fraction of the vertices are left, a
+  // batch reaches 32 times the cheapest cost or the cheapest 20 %; below, the
+  // default rule. The result stays a valid sequence of independent batches.
+  const TriangleMesh mesh = makeFandisk();
+  SimplifyOptions options;
+  options.placement = Placement::kFree;
+  options.target_triangles = mesh.triangles.size() / 100;
+  const SimplifyResult narrow = simplifyOrFail(mesh, options);
+  options.fine_vertex_fraction = 0.3;
+  const SimplifyResult wide = simplifyOrFail(mesh, options);
+  replayAndCheck(mesh, wide, "fandisk (wide batches)", ReplayChecks{false});
+  // Batches that start with more than 30 % of the vertices left.
+  const auto batchesAbove = [&](const SimplifyResult& r) {
+    size_t live = mesh.positions.size(), count = 0;
+    for (const auto& batch : r.batches) {
+      if (10 * live <= 3 * mesh.positions.size()) break;
+      ++count;
+      live -= batch.size();
+    }
+    return count;
+  };
+  EXPECT_LT(2 * batchesAbove(wide), batchesAbove(narrow));
+  EXPECT_LT(wide.batches.size(), narrow.batches.size());
+}
+
 TEST(Simplify, TimeBudgetStopsEarlyWithAValidResult) {
   const TriangleMesh mesh = makeFandisk();
   SimplifyOptions options;

@@ -523,6 +523,7 @@ void Simplifier::run(SimplifyResult* result) {
   const uint64_t target = options_.target_triangles;
   const double max_fraction = std::clamp(options_.batch_max_fraction, 0.0, 1.0);
   const double coarse_below = options_.coarse_vertex_fraction * static_cast<double>(live_vertices_);
+  const double fine_above = options_.fine_vertex_fraction * static_cast<double>(live_vertices_);
   const auto start_time = std::chrono::steady_clock::now();
   auto report = [&](bool final) {
     if (!options_.progress) return;
@@ -543,10 +544,19 @@ void Simplifier::run(SimplifyResult* result) {
     }
     ++batch_number_;
     batch.clear();
-    const bool coarse = static_cast<double>(live_vertices_) < coarse_below;
-    const double ratio = std::max(1.0, coarse ? options_.coarse_batch_cost_ratio : options_.batch_cost_ratio);
-    const double min_fraction =
-        std::clamp(coarse ? options_.coarse_batch_min_fraction : options_.batch_min_fraction, 0.0, 1.0);
+    // The batch rule of this stretch: wide near full resolution, narrow at
+    // the coarse end (SimplifyOptions).
+    const double live = static_cast<double>(live_vertices_);
+    double ratio = options_.batch_cost_ratio, min_fraction = options_.batch_min_fraction;
+    if (live < coarse_below) {
+      ratio = options_.coarse_batch_cost_ratio;
+      min_fraction = options_.coarse_batch_min_fraction;
+    } else if (live > fine_above) {
+      ratio = options_.fine_batch_cost_ratio;
+      min_fraction = options_.fine_batch_min_fraction;
+    }
+    ratio = std::max(1.0, ratio);
+    min_fraction = std::clamp(min_fraction, 0.0, 1.0);
     const uint64_t cap = std::max<uint64_t>(
         1, static_cast<uint64_t>(max_fraction * static_cast<double>(live_vertices_)));
     // Usually one round; another only when every candidate of a round failed
