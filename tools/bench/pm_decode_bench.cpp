@@ -11,6 +11,12 @@
 //                              and direct bits, recorded once) with nothing
 //                              else: the ceiling that the coding of spec 6.5
 //                              and 6.7 puts on any decoder of the stream;
+//   Rest/<mesh>/<stream>       the decoder's own loop (records, predictions,
+//                              rings, splits) with every decision's outcome
+//                              read back from the recording instead of range
+//                              decoded: the ceiling that the rest of spec 6
+//                              puts on a decoder whose entropy decoding were
+//                              free;
 //   LevelUp/<mesh>/<stream>    ProgressiveMesh::setLevel(finest) from level 0,
 //                              the records already parsed (vertex splits only);
 //   LevelDown/<mesh>/<stream>  setLevel(0) from the finest level (collapses).
@@ -48,17 +54,21 @@ namespace {
 using namespace mrsv;
 
 // One coded payload (PBAS or PSPL) and the decisions its decoding makes:
-// an index into PmContexts' bit models, or -n for n direct bits.
+// an index into PmContexts' bit models, or -n for n direct bits, and what
+// each decoded (the bit, or the n bits' value).
 struct Payload {
   const uint8_t* data = nullptr;
   size_t size = 0;
+  uint32_t split_count = 0;  // 0 for PBAS
   std::vector<int32_t> decisions;
+  std::vector<uint32_t> outcomes;
 };
 
 struct Stream {
   std::string name;  // mesh/placement and bits
   std::vector<uint8_t> bytes;
   uint32_t splits = 0;
+  PmHeader header;
   std::vector<Payload> payloads;  // into `bytes`
 };
 
@@ -82,62 +92,91 @@ std::vector<std::string> meshFiles(const std::string& dir, const std::string& fi
   return names;
 }
 
-// A range decoder that writes down which decisions it makes.
+// A range decoder that writes down which decisions it makes and what they
+// decode.
 struct RecordingCoder {
   static constexpr bool kEncoding = false;
-  RangeDecoder* rc;
+  RangeDecoder rc;
   const pm::PmContexts* contexts;
-  std::vector<int32_t>* decisions;
+  Payload* payload;
   int bit(BitModel* m, int) {
-    decisions->push_back(static_cast<int32_t>(m - reinterpret_cast<const BitModel*>(contexts)));
-    return rc->bit(m);
+    payload->decisions.push_back(static_cast<int32_t>(m - reinterpret_cast<const BitModel*>(contexts)));
+    const int b = rc.bit(m);
+    payload->outcomes.push_back(static_cast<uint32_t>(b));
+    return b;
   }
   int bitUnpredictable(BitModel* m, int b) { return bit(m, b); }
   uint32_t direct(uint32_t, int n) {
-    decisions->push_back(-n);
-    return rc->direct(n);
+    payload->decisions.push_back(-n);
+    const uint32_t value = rc.direct(n);
+    payload->outcomes.push_back(value);
+    return value;
   }
-  bool overrun() const { return rc->overrun() != 0; }
+  bool overrun() const { return rc.overrun() != 0; }
 };
 static_assert(sizeof(pm::PmContexts) % sizeof(BitModel) == 0, "PmContexts is an array of bit models");
 
-// Decodes s->bytes (as decodeProgressiveMesh does, without its checks: the
-// stream is our own) and records every payload's decisions.
-bool recordDecisions(Stream* s) {
-  Container c;
-  PmHeader h;
-  if (!readContainer(s->bytes.data(), s->bytes.size(), DecodeOptions{}.container, &c).ok() ||
-      !parsePmHeader(c.chunks[0], &h).ok())
-    return false;
-  ProgressiveMesh pm;
-  ProgressiveMesh::Impl& state = pm.state();
+// A coder whose decisions come out as recorded, with no range decoding.
+struct ReplayCoder {
+  static constexpr bool kEncoding = false;
+  const uint32_t* next;
+  int bit(BitModel*, int) { return static_cast<int>(*next++); }
+  int bitUnpredictable(BitModel*, int) { return static_cast<int>(*next++); }
+  uint32_t direct(uint32_t, int) { return *next++; }
+  bool overrun() const { return false; }
+};
+
+// The decoder's loop over the records of every payload (as decodeChunks() in
+// pm_decode.cpp runs it, without its checks: the stream is our own), each
+// payload through the coder that coderFor(payload) makes.
+template <class CoderFor>
+bool decodeRecords(const PmHeader& h, std::vector<Payload>& payloads, ProgressiveMesh* pm, CoderFor&& coderFor) {
+  ProgressiveMesh::Impl& state = pm->state();
   state.header = h;
   pm::PmContexts contexts;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    const bool base = chunk.chunk_type == kChunkBaseMesh;
-    if (!base && chunk.chunk_type != kChunkSplits) continue;
-    const size_t skip = base ? 0 : 4;  // a batch's split_count
-    Payload p{chunk.payload + skip, chunk.chunk_length - skip, {}};
-    RangeDecoder rc(p.data, p.size);
-    RecordingCoder coder{&rc, &contexts, &p.decisions};
-    if (base) {
+  for (Payload& p : payloads) {
+    auto coder = coderFor(p, contexts);
+    if (p.split_count == 0) {
       std::vector<std::array<uint32_t, 3>> triangles;
       if (!pm::codeBaseMesh(coder, contexts, state, &triangles).empty() ||
           !state.table.build(h.base_vertex_count, triangles).empty())
         return false;
+      // Room for every split, as the decoder makes it.
+      state.splits.reserve(h.splitCount());
+      state.positions.reserve(h.vertex_count);
+      if (h.scalar_bits) state.scalars.reserve(h.vertex_count);
+      state.table.reserve(h.vertex_count, h.base_triangle_count + 2 * uint64_t{h.splitCount()});
     } else {
       BatchCursor cursor = state.beginBatch();
-      for (uint32_t k = ByteReader(chunk.payload, 4).u32(); k > 0; --k) {
+      for (uint32_t k = p.split_count; k > 0; --k) {
         SplitRecord record;
         if (!pm::codeSplit(coder, contexts, state, &cursor, &record).empty()) return false;
         state.splits.push_back(record);
         state.applySplit(state.ring);
       }
     }
-    s->payloads.push_back(std::move(p));
   }
   return true;
+}
+
+// Finds s->bytes' payloads and records every payload's decisions.
+bool recordDecisions(Stream* s) {
+  Container c;
+  if (!readContainer(s->bytes.data(), s->bytes.size(), DecodeOptions{}.container, &c).ok() ||
+      !parsePmHeader(c.chunks[0], &s->header).ok())
+    return false;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkBaseMesh)
+      s->payloads.push_back(Payload{chunk.payload, chunk.chunk_length, 0, {}, {}});
+    else if (chunk.chunk_type == kChunkSplits)  // after the batch's split_count
+      s->payloads.push_back(
+          Payload{chunk.payload + 4, chunk.chunk_length - 4, ByteReader(chunk.payload, 4).u32(), {}, {}});
+  }
+  ProgressiveMesh pm;
+  return decodeRecords(s->header, s->payloads, &pm, [](Payload& p, const pm::PmContexts& contexts) {
+    return RecordingCoder{RangeDecoder(p.data, p.size), &contexts, &p};
+  });
 }
 
 // As `mrsv encode [--bits B] [--placement endpoint] MESH OUT.mrsv`, every
@@ -228,6 +267,20 @@ void BM_Entropy(benchmark::State& state, const Stream* s) {
   state.counters["decisions_per_split"] = static_cast<double>(decisions) / s->splits;
 }
 
+void BM_Rest(benchmark::State& state, Stream* s) {
+  for (auto _ : state) {
+    ProgressiveMesh pm;
+    if (!decodeRecords(s->header, s->payloads, &pm, [](const Payload& p, const pm::PmContexts&) {
+          return ReplayCoder{p.outcomes.data()};
+        })) {
+      state.SkipWithError("the recorded decisions do not decode");
+      return;
+    }
+    benchmark::DoNotOptimize(pm.triangleCount());
+  }
+  state.SetItemsProcessed(int64_t{s->splits} * state.iterations());
+}
+
 void BM_LevelUp(benchmark::State& state, const Stream* s) {
   DecodedMesh decoded;
   if (!decode(state, *s, &decoded)) return;
@@ -283,9 +336,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "pm_decode_bench: %s: the stream does not decode\n", s.name.c_str());
       return 1;
     }
-  for (const Stream& s : streams) {
+  for (Stream& s : streams) {
     benchmark::RegisterBenchmark(("Decode/" + s.name).c_str(), BM_Decode, &s)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("Entropy/" + s.name).c_str(), BM_Entropy, &s)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("Rest/" + s.name).c_str(), BM_Rest, &s)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("LevelUp/" + s.name).c_str(), BM_LevelUp, &s)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("LevelDown/" + s.name).c_str(), BM_LevelDown, &s)
         ->Unit(benchmark::kMillisecond);
