@@ -385,14 +385,12 @@ def report(args, res, names, info):
         if not mesh:
             continue
         bpv = lambda b: f"{8 * b / mesh['vertices']:.2f}" if b else "-"  # noqa: E731
-        r = (m["bytes"] / dr["bytes"]) if m and dr else None
-        endpoint = e.get((n, "mrsv-endpoint")) and e[(n, "mrsv-endpoint")]["bytes"]
-        re = (endpoint / dr["bytes"]) if endpoint and dr else None
-        wide = e.get((n, "mrsv-wide")) and e[(n, "mrsv-wide")]["bytes"]
-        rw = (wide / dr["bytes"]) if wide and dr else None
+        size = lambda variant: e.get((n, variant)) and e[(n, variant)]["bytes"]  # noqa: E731
+        to_draco = lambda b: (b / dr["bytes"]) if b and dr else None  # noqa: E731
+        endpoint, wide = size("mrsv-endpoint"), size("mrsv-wide")
+        r, re, rw = to_draco(m and m["bytes"]), to_draco(endpoint), to_draco(wide)
         rows.append([n, mesh["vertices"], mesh["triangles"], m and m["bytes"], bpv(m and m["bytes"]),
-                     endpoint, bpv(endpoint),
-                     e.get((n, "mrsv-paper")) and e[(n, "mrsv-paper")]["bytes"],
+                     endpoint, bpv(endpoint), size("mrsv-paper"),
                      dr and dr["bytes"], bpv(dr and dr["bytes"]), f"{r:.3f}" if r else "-",
                      ("yes" if r <= SIZE_GOAL else "NO") if r else "-", f"{re:.3f}" if re else "-",
                      ("yes" if re <= SIZE_GOAL else "NO") if re else "-", f"{rw:.3f}" if rw else "-"])

@@ -141,11 +141,7 @@ bool decodeRecords(const PmHeader& h, std::vector<Payload>& payloads, Progressiv
       if (!pm::codeBaseMesh(coder, contexts, state, &triangles).empty() ||
           !state.table.build(h.base_vertex_count, triangles).empty())
         return false;
-      // Room for every split, as the decoder makes it.
-      state.splits.reserve(h.splitCount());
-      state.positions.reserve(h.vertex_count);
-      if (h.scalar_bits) state.scalars.reserve(h.vertex_count);
-      state.table.reserve(h.vertex_count, h.base_triangle_count + 2 * uint64_t{h.splitCount()});
+      state.reserveForSplits(h.splitCount());
     } else {
       BatchCursor cursor = state.beginBatch();
       for (uint32_t k = p.split_count; k > 0; --k) {

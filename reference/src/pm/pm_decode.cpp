@@ -39,17 +39,6 @@ uint64_t splitsToReserve(const Container& c, const PmHeader& h) {
   return std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_bytes);
 }
 
-// Makes room for the base mesh and `splits` splits, each adding one vertex
-// and at most two triangles: decoding then appends without reallocating.
-void reserveForSplits(ProgressiveMesh::Impl& s, uint64_t splits) {
-  const PmHeader& h = s.header;
-  const uint64_t vertices = h.base_vertex_count + splits;
-  s.splits.reserve(splits);
-  s.positions.reserve(vertices);
-  if (h.scalar_bits) s.scalars.reserve(vertices);
-  s.table.reserve(vertices, h.base_triangle_count + 2 * splits);
-}
-
 // A coded payload decodes to exactly its bytes (spec 5.6, as for grids).
 Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, const std::string& field) {
   if (rc.overrun() != 0)
@@ -87,7 +76,7 @@ Error decodeChunks(DecodedMesh* out) {
       if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "PBAS"); !e.ok()) return e;
       problem = s.table.build(h.base_vertex_count, triangles);
       if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
-      reserveForSplits(s, splitsToReserve(c, h));
+      s.reserveForSplits(splitsToReserve(c, h));
       out->has_mesh = true;
     } else if (chunk.chunk_type == kChunkSplits) {
       // spec 6.7 batch(): split_count u32, then the coded splits.

@@ -78,6 +78,15 @@ struct ProgressiveMesh::Impl {
       if (header.scalar_bits) __builtin_prefetch(&scalars[w]);
     }
   }
+  // Makes room for the base mesh and `count` splits, each adding one vertex
+  // and at most two triangles: decoding then appends without reallocating.
+  void reserveForSplits(uint64_t count) {
+    const uint64_t vertices = header.base_vertex_count + count;
+    splits.reserve(count);
+    positions.reserve(vertices);
+    if (header.scalar_bits) scalars.reserve(vertices);
+    table.reserve(vertices, header.base_triangle_count + 2 * count);
+  }
   // Applies splits[level], whose vs has ring `vs_ring` now.
   void applySplit(const CornerTable::Ring& vs_ring);
   // Applies splits[level] (finding the ring first).
