@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <set>
 
@@ -167,6 +169,34 @@ TEST(PtStream, InvalidCollapsesAreRefusedByTheWriter) {
   // The interior vertex 13 into a corner of the boundary: Table 1 case 2/3.
   e = writePtStream(mesh, {{PtCollapse{0, 13}}}, &bytes);
   EXPECT_FALSE(e.ok());
+}
+
+}  // namespace
+}  // namespace mrsv
+
+namespace mrsv {
+namespace {
+
+// Writes small PT streams as fuzz seeds when MRSV_WRITE_PT_SEEDS names a
+// directory (fuzz/corpus_pt was made so); otherwise checks they still write.
+TEST(PtStream, FuzzSeeds) {
+  const char* dir = std::getenv("MRSV_WRITE_PT_SEEDS");
+  int k = 0;
+  for (int n : {3, 4}) {
+    for (uint32_t seed : {1u, 2u}) {
+      const QuantizedTets mesh = test::gridTets(n);
+      const auto batches = trialCollapses(mesh, n == 3 ? 6 : 12, seed);
+      std::vector<uint8_t> bytes;
+      ASSERT_TRUE(writePtStream(mesh, batches, &bytes).ok());
+      if (dir) {
+        std::string path = std::string(dir) + "/grid" + std::to_string(n) + "_" + std::to_string(k++) + ".mrsv";
+        FILE* f = std::fopen(path.c_str(), "wb");
+        ASSERT_NE(f, nullptr);
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+      }
+    }
+  }
 }
 
 }  // namespace
