@@ -229,6 +229,10 @@ bool LegacyReader::attributeSection(std::string_view keyword, uint64_t n, bool k
     if (arrays > text_.size()) return fail("FIELD: " + std::to_string(arrays) + " arrays cannot fit in the file");
     for (uint64_t a = 0; a < arrays; ++a) {
       std::string array_name(token());
+      while (array_name == "METADATA") {  // VTK writes one after each array
+        skipMetadata();
+        array_name = token();
+      }
       uint64_t components = 0, tuples = 0;
       if (array_name.empty()) return fail("FIELD: the file ends before array " + std::to_string(a + 1));
       if (!count("FIELD array component count", &components) || !count("FIELD array tuple count", &tuples) ||
@@ -481,10 +485,19 @@ void encodeVtkLegacy(const TetMesh& mesh, bool ascii, std::vector<uint8_t>* out)
     separator(true);
   }
   if (!ascii) text += '\n';
+  // The first field as SCALARS (a reader's active scalars), the others in a
+  // FIELD block: VTK's reader takes only the first SCALARS unless told to
+  // read them all, but every array of a FIELD.
   if (!mesh.fields.empty()) {
     text += "POINT_DATA " + std::to_string(n) + "\n";
-    for (const ScalarField& field : mesh.fields) {
-      text += "SCALARS " + field.name + " double 1\nLOOKUP_TABLE default\n";
+    for (size_t f = 0; f < mesh.fields.size(); ++f) {
+      const ScalarField& field = mesh.fields[f];
+      if (f == 0) {
+        text += "SCALARS " + field.name + " double 1\nLOOKUP_TABLE default\n";
+      } else {
+        if (f == 1) text += "FIELD FieldData " + std::to_string(mesh.fields.size() - 1) + "\n";
+        text += field.name + " 1 " + std::to_string(n) + " double\n";
+      }
       for (double v : field.values) {
         appendDouble(v, ascii, &text);
         separator(true);

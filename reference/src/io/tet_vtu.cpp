@@ -319,12 +319,22 @@ bool VtuReader::binaryBlock(const ArrayRef& ref, std::vector<uint8_t>* block) {
   } else {
     encoded = text_.substr(ref.content_begin, ref.content_end - ref.content_begin);
   }
+  // Inline text is decoded whole (every character checked); appended text
+  // runs on to the other arrays, so only the header is decoded first.
   std::vector<uint8_t> head;
-  if (std::string problem = decodeBase64(encoded, header, &head); !problem.empty())
+  const bool inline_text = ref.format != ArrayRef::Format::kAppended;
+  if (std::string problem = decodeBase64(encoded, inline_text ? SIZE_MAX : header, &head); !problem.empty())
     return fail(ref.tag_offset, "DataArray '" + ref.name + "': " + problem);
   if (head.size() < header)
     return fail(ref.tag_offset, "DataArray '" + ref.name + "': no byte-count header");
   headerValue(head.data(), &n);
+  if (inline_text) {
+    if (n > head.size() - header)
+      return fail(ref.tag_offset, "DataArray '" + ref.name + "': " + std::to_string(head.size() - header) +
+                                      " bytes of data where the header says " + std::to_string(n));
+    block->assign(head.begin() + static_cast<long>(header), head.begin() + static_cast<long>(header + n));
+    return true;
+  }
   // Base64 gives 3 bytes per 4 characters: check before decoding.
   if (n > encoded.size() / 4 * 3)
     return fail(ref.tag_offset, "DataArray '" + ref.name + "': byte count " + std::to_string(n) +
