@@ -24,13 +24,15 @@ float loadFloat(const uint8_t* p, bool big_endian) {
   return f;
 }
 
-// ni, nj, nk and their product, or false when any is not from 1 to 2^31-1.
+// ni, nj, nk and their product, or false when any is not from 1 to 2^31-1
+// or the product exceeds 2^32-1.
 bool dims(const uint8_t* p, bool big_endian, uint32_t out[3], uint64_t* n) {
   *n = 1;
   for (int a = 0; a < 3; ++a) {
     out[a] = load32(p + 4 * a, big_endian);
     if (out[a] < 1 || out[a] > INT32_MAX) return false;
     *n *= out[a];
+    if (*n > UINT32_MAX) return false;  // more points than a TetMesh indexes (and no overflow)
   }
   return true;
 }
