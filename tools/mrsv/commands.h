@@ -14,6 +14,7 @@ int runDecode(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runCheck(int argc, char** argv);
 int runCompare(int argc, char** argv);
+int runTetrahedralize(int argc, char** argv);
 
 // Meshes (cmd_mesh.cpp): encode dispatches when an argument names a mesh file;
 // decode and check dispatch on the stream's first chunk.
