@@ -24,4 +24,11 @@ class Args;
 int runMeshDecode(const Args& args, const std::string& in, const std::string& out,
                   const std::vector<uint8_t>& bytes, const DecodeOptions& options);
 
+// Tet meshes (cmd_tets.cpp): encode dispatches when an argument names a tet
+// mesh file; decode, info and check dispatch on the stream's first chunk.
+bool isTetEncode(int argc, char** argv);
+int runTetEncode(int argc, char** argv);
+int runTetDecode(const Args& args, const std::string& in, const std::string& out,
+                 const std::vector<uint8_t>& bytes, const DecodeOptions& options);
+
 }  // namespace mrsv::cli

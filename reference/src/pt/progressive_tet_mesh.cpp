@@ -62,7 +62,10 @@ ProgressiveTetMesh& ProgressiveTetMesh::operator=(ProgressiveTetMesh&&) noexcept
 const PtHeader& ProgressiveTetMesh::header() const { return impl_->header; }
 uint32_t ProgressiveTetMesh::splitsDecoded() const { return static_cast<uint32_t>(impl_->splits.size()); }
 uint32_t ProgressiveTetMesh::level() const { return impl_->level; }
-uint32_t ProgressiveTetMesh::vertexCount() const { return impl_->header.base_vertex_count + impl_->level; }
+uint32_t ProgressiveTetMesh::vertexCount() const {
+  // No vertices before the base mesh is read (a prefix without TBAS).
+  return impl_->mesh.tets.empty() ? 0 : impl_->header.base_vertex_count + impl_->level;
+}
 uint32_t ProgressiveTetMesh::tetCount() const { return static_cast<uint32_t>(impl_->mesh.tets.size()); }
 
 uint32_t ProgressiveTetMesh::tetCountAt(uint32_t level) const {

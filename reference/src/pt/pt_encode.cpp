@@ -13,6 +13,33 @@ namespace mrsv {
 
 namespace {
 
+// The encoder's coder with a running estimate of the bits spent (the
+// information content of each decision under its model before it adapts),
+// so that the stats can split the stream into connectivity and geometry.
+struct CountingCoder {
+  static constexpr bool kEncoding = true;
+  RangeEncoder* rc;
+  double bits = 0;
+  int bit(BitModel* m, int b) {
+    const double p0 = m->p0 / double{kProbabilityOne};
+    bits -= std::log2(b ? 1 - p0 : p0);
+    rc->bit(m, b);
+    return b;
+  }
+  int bitUnpredictable(BitModel* m, int b) { return bit(m, b); }
+  int symbol(SymbolModel* m, int s) {
+    bits -= std::log2(m->width(s) / double{1u << kSymbolBits});
+    rc->symbol(m, s);
+    return s;
+  }
+  uint32_t direct(uint32_t value, int n) {
+    bits += n;
+    rc->direct(value, n);
+    return value;
+  }
+  bool overrun() const { return false; }
+};
+
 Error fail(Status status, const std::string& field, std::string message) {
   return Error{status, 0, field, std::move(message)};
 }
@@ -274,12 +301,14 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
     const uint32_t count = static_cast<uint32_t>(batch.size());
     for (int i = 0; i < 4; ++i) payload[i] = static_cast<uint8_t>(count >> (8 * i));
     RangeEncoder rc(&payload);
-    EncodingCoder coder{&rc};
+    CountingCoder coder{&rc};
     size_t next = 0;
     for (uint32_t v = 0; next < batch.size(); ++v) {
       const CollapseRecord& r = batch[next];
       const int flag = number[r.vs] == v ? 1 : 0;
+      double before = coder.bits;
       coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], flag);
+      if (stats) stats->flag_bits += coder.bits - before;
       if (!flag) continue;
       const std::string where = "batch " + std::to_string(b) + ", the collapse of " + std::to_string(r.vt) +
                                 " into " + std::to_string(r.vs);
@@ -296,7 +325,10 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
       for (uint32_t g : walk_global) s.walk_local.push_back(s.link.localIndex(g));
       bool coded_closed = closed;
       const std::vector<uint32_t> wanted = s.walk_local;
+      before = coder.bits;
       std::string problem = pt::codeCut(coder, ctx, s.link, &s.scratch, &s.walk_local, &coded_closed);
+      if (stats) stats->cut_bits += coder.bits - before;
+      before = coder.bits;
       if (problem.empty() && (coded_closed != closed || s.walk_local != wanted))
         problem = "the cut is not a simple walk in the link of vs";
       Point3i position = mesh.positions[r.vt];
@@ -305,6 +337,7 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
       if (problem.empty())
         problem = pt::codeSplitValues(coder, ctx, h, s.mesh, v, walk_global.data(),
                                       static_cast<uint32_t>(walk_global.size()), &position, values);
+      if (stats) stats->value_bits += coder.bits - before;
       if (problem.empty()) {
         s.mesh.positions.push_back(position);
         s.mesh.scalars.insert(s.mesh.scalars.end(), values, values + fc);

@@ -38,6 +38,9 @@ struct PtStreamStats {
   uint64_t header_bytes = 0, base_bytes = 0, split_bytes = 0;
   uint32_t batches = 0, splits = 0;
   uint64_t base_vertices = 0, base_tets = 0;
+  // Estimated bits of the splits by what they code: the split flags and the
+  // cuts are the connectivity, vt's position and field values the geometry.
+  double flag_bits = 0, cut_bits = 0, value_bits = 0;
 };
 
 // Writes the PT stream of `mesh` simplified by `batches` (batches[0] is
