@@ -39,14 +39,12 @@ void Quadric5::addSquare(const std::array<double, 5>& w, double weight) {
 }
 
 double Quadric5::evaluate(const Vec3& p, double s) const {
-  const double v[5] = {p[0], p[1], p[2], s, 1.0};
-  double e = 0.0;
-  int k = 0;
-  for (int i = 0; i < 5; ++i) {
-    e += m[k++] * v[i] * v[i];
-    for (int j = i + 1; j < 5; ++j) e += 2.0 * m[k++] * v[i] * v[j];
-  }
-  return e;
+  const double x = p[0], y = p[1], z = p[2];
+  // Row by row of the upper triangle: m[0..4] row 0, m[5..8] row 1, m[9..11]
+  // row 2, m[12..13] row 3, m[14] row 4; off-diagonal terms count twice.
+  return x * (m[0] * x + 2.0 * (m[1] * y + m[2] * z + m[3] * s + m[4])) +
+         y * (m[5] * y + 2.0 * (m[6] * z + m[7] * s + m[8])) + z * (m[9] * z + 2.0 * (m[10] * s + m[11])) +
+         s * (m[12] * s + 2.0 * m[13]) + m[14];
 }
 
 void initialQuadrics(const TetComplex& complex, const std::vector<Vec3>& positions,

@@ -54,12 +54,32 @@ constexpr uint32_t kCheckInterval = 256;
 // their shortest edges first instead of in index order.
 constexpr double kLengthTieBreak = 1e-9;
 
+// Remembered failures per vertex: targets that failed the tests since the
+// vertex's neighbourhood last changed, so later batches do not test them
+// again (a candidate whose cheapest target fails is otherwise retried in
+// every batch).
+constexpr int kFailedTargets = 3;
+
 struct VertexState {
   double cost = 0.0;
+  uint32_t best = kNone;   // the target giving `cost`
   uint32_t locked_in = 0;  // the batch that last locked it
   uint32_t dirty_in = 0;   // the batch that last changed its star
+  uint32_t failed_targets[kFailedTargets] = {kNone, kNone, kNone};
   uint8_t failed = 0;      // no target passed the tests since its star last changed
   uint8_t has_target = 0;  // Table 1 allows at least one target
+  bool failedBefore(uint32_t vs) const {
+    return failed_targets[0] == vs || failed_targets[1] == vs || failed_targets[2] == vs;
+  }
+  void rememberFailure(uint32_t vs) {
+    for (uint32_t& f : failed_targets) {
+      if (f == kNone) {
+        f = vs;
+        return;
+      }
+    }
+  }
+  void forgetFailures() { failed_targets[0] = failed_targets[1] = failed_targets[2] = kNone; }
 };
 
 struct Entry {
@@ -98,6 +118,10 @@ class TetSimplifier {
   // targets_.
   void targetsOf(uint32_t vt);
   void refreshCandidate(uint32_t v);
+  // Quadric costs, right after collapsing vt into vs: the candidates around
+  // vs. Only vs's quadric and star changed, so a neighbour x whose best
+  // target was neither vs nor vt just compares its candidate with x -> vs.
+  void updateAfterCollapse(uint32_t vs, uint32_t vt);
   Outcome check(uint32_t vs, uint32_t vt, uint32_t* vanishing);
   void lockStar(uint32_t v);
 
@@ -108,6 +132,7 @@ class TetSimplifier {
   std::vector<Vec3> positions_;  // normalised
   std::vector<double> scalars_;  // normalised first field (zeros without one)
   std::vector<Quadric5> quadrics_;
+  std::vector<double> self_error_;  // per vertex, its quadric at its own place
   std::vector<Vec3> normals_;  // kPaper
   tetsimplify::PaperWeights paper_;
   std::vector<VertexState> state_;
@@ -115,6 +140,7 @@ class TetSimplifier {
   std::vector<uint32_t> neighbour_slot_;  // where in neighbours_, when stamped
   uint32_t stamp_ = 0;
   std::vector<std::pair<uint32_t, bool>> neighbours_;
+  std::vector<std::pair<uint32_t, bool>> around_;
   std::vector<Target> targets_;
   std::vector<uint32_t> dirty_;
   std::vector<std::array<uint32_t, 3>> new_faces_;
@@ -184,6 +210,8 @@ Error TetSimplifier::init(const QuantizedTetMesh& mesh) {
   paper_.inverse_volume_unit = volume_sum > 0.0 ? double(mesh.tets.size()) / volume_sum : 1.0;
   if (options_.cost == TetCost::kQuadric) {
     tetsimplify::initialQuadrics(complex_, positions_, scalars_, options_.quadric_boundary_weight, &quadrics_);
+    self_error_.resize(nv);
+    for (uint32_t v = 0; v < nv; ++v) self_error_[v] = quadrics_[v].evaluate(positions_[v], scalars_[v]);
   } else {
     normals_.resize(nv);
     for (uint32_t v = 0; v < nv; ++v) normals_[v] = tetsimplify::boundaryNormal(complex_, positions_, v);
@@ -226,10 +254,10 @@ void TetSimplifier::gatherNeighbours(uint32_t v) {
 
 double TetSimplifier::cost(uint32_t vs, uint32_t vt) {
   if (options_.cost == TetCost::kQuadric) {
-    Quadric5 q = quadrics_[vs];
-    q.add(quadrics_[vt]);
+    // (Q_vs + Q_vt)(vs), with Q_vs(vs) kept per vertex.
     const Vec3 d = simplify::sub(positions_[vs], positions_[vt]);
-    return q.evaluate(positions_[vs], scalars_[vs]) + kLengthTieBreak * simplify::dot(d, d);
+    return self_error_[vs] + quadrics_[vt].evaluate(positions_[vs], scalars_[vs]) +
+           kLengthTieBreak * simplify::dot(d, d);
   }
   return tetsimplify::paperCost(complex_, positions_, scalars_, normals_, vs, vt, paper_);
 }
@@ -246,18 +274,46 @@ void TetSimplifier::refreshCandidate(uint32_t v) {
   targetsOf(v);
   VertexState& s = state_[v];
   s.failed = 0;
+  s.forgetFailures();
   s.has_target = 0;
   s.cost = 0.0;
+  s.best = kNone;
   for (const Target& t : targets_) {
     if (!t.allowed) continue;
-    s.cost = s.has_target ? std::min(s.cost, t.cost) : t.cost;
+    if (!s.has_target || t.cost < s.cost) {
+      s.cost = t.cost;
+      s.best = t.vs;
+    }
     s.has_target = 1;
   }
 }
 
+void TetSimplifier::updateAfterCollapse(uint32_t vs, uint32_t vt) {
+  gatherNeighbours(vs);
+  around_.assign(neighbours_.begin(), neighbours_.end());
+  for (const auto& [x, boundary_edge] : around_) {
+    VertexState& s = state_[x];
+    if (s.failed || s.best == vs || s.best == vt || !s.has_target) {
+      refreshCandidate(x);
+      continue;
+    }
+    // x's other targets kept their costs; its star, or the star of vs, may
+    // have changed, so earlier failures may pass now.
+    s.forgetFailures();
+    if (!tableAllows(vs, x, boundary_edge)) continue;
+    const double c = cost(vs, x);
+    if (c < s.cost) {
+      s.cost = c;
+      s.best = vs;
+    }
+  }
+  refreshCandidate(vs);
+}
+
 Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
-  if (!link_.holds(complex_, vs, vt, !options_.allow_boundary_cases_2_3)) return Outcome::kLink;
-  // Orientation (exact) and shape of every tet that keeps vt.
+  // Orientation (exact) and shape of every tet that keeps vt first: one walk
+  // over vt's star, and the test most collapses fail; then the link
+  // condition (three walks), then the boundary (a grid query per face).
   Outcome outcome = Outcome::kOk;
   uint32_t ring = 0;
   const IPoint& ps = complex_.position(vs);
@@ -296,6 +352,7 @@ Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
   });
   *vanishing = ring;
   if (outcome != Outcome::kOk) return outcome;
+  if (!link_.holds(complex_, vs, vt, !options_.allow_boundary_cases_2_3)) return Outcome::kLink;
   if (boundary_moves) {
     for (size_t i = 0; i < new_faces_.size(); ++i) {
       if (index_.clashes(complex_, new_faces_[i], vt)) return Outcome::kSelfIntersection;
@@ -363,10 +420,23 @@ void TetSimplifier::run(TetSimplifyResult* out) {
         stop = true;
         break;
       }
-      targetsOf(vt);
+      // Quadric costs are kept exact, so the remembered best target is the
+      // cheapest: try it alone first, and list all targets only if it fails.
+      const VertexState& sv = state_[vt];
+      bool done = false, waiting = false;
+      if (options_.cost == TetCost::kQuadric && sv.best != kNone && sv.cost <= limit &&
+          state_[sv.best].locked_in != batch_ && !sv.failedBefore(sv.best)) {
+        targets_.assign(1, Target{sv.cost, sv.best, true});
+      } else {
+        targetsOf(vt);
+      }
+      for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1) {
+        if (done || stop || targets_.size() != 1 || options_.cost != TetCost::kQuadric) break;
+        targetsOf(vt);  // the best target failed: all of them
+      }
       std::sort(targets_.begin(), targets_.end(),
                 [](const Target& a, const Target& b) { return a.cost < b.cost || (a.cost == b.cost && a.vs < b.vs); });
-      bool done = false, waiting = false;
       for (const Target& target : targets_) {
         if (target.cost > limit) {
           state_[vt].cost = target.cost;  // waits for a later batch at its true cost
@@ -383,6 +453,7 @@ void TetSimplifier::run(TetSimplifyResult* out) {
           waiting = true;
           continue;
         }
+        if (state_[vt].failedBefore(target.vs)) continue;
         uint32_t vanishing = 0;
         const Outcome outcome = check(target.vs, vt, &vanishing);
         switch (outcome) {
@@ -393,22 +464,33 @@ void TetSimplifier::run(TetSimplifyResult* out) {
           case Outcome::kMinDihedral: ++stats_.evaded_min_dihedral; break;
           case Outcome::kSelfIntersection: ++stats_.evaded_self_intersection; break;
         }
-        if (outcome != Outcome::kOk) continue;
+        if (outcome != Outcome::kOk) {
+          state_[vt].rememberFailure(target.vs);
+          continue;
+        }
         if (complex_.liveTets() - vanishing < target_tets) {
           stop = true;
           break;
         }
+        // (updateAfterCollapse() refills targets_: keep vs.)
+        const uint32_t vs = target.vs;
         lockStar(vt);
-        lockStar(target.vs);
+        lockStar(vs);
         const bool boundary = complex_.onBoundary(vt);
-        complex_.collapse(target.vs, vt);
-        if (options_.cost == TetCost::kQuadric) quadrics_[target.vs].add(quadrics_[vt]);
-        if (boundary && options_.boundary_intersection_test) index_.addFacesAround(complex_, target.vs);
-        dirty_.push_back(target.vs);
-        batch.push_back({target.vs, vt});
+        complex_.collapse(vs, vt);
+        if (boundary && options_.boundary_intersection_test) index_.addFacesAround(complex_, vs);
+        if (options_.cost == TetCost::kQuadric) {
+          quadrics_[vs].add(quadrics_[vt]);
+          self_error_[vs] = quadrics_[vs].evaluate(positions_[vs], scalars_[vs]);
+          updateAfterCollapse(vs, vt);
+        } else {
+          dirty_.push_back(vs);
+        }
+        batch.push_back({vs, vt});
         ++stats_.collapses;
         done = true;
         break;
+      }
       }
       if (stop) break;
       if (!done && !waiting) state_[vt].failed = 1;
@@ -420,9 +502,9 @@ void TetSimplifier::run(TetSimplifyResult* out) {
         }
       }
     }
-    // The collapses changed the stars of their vs and of every vertex around
-    // it, all locked in this batch: new candidates (and, for the paper's
-    // costs, normals) for them once, now.
+    // The paper's costs: the collapses changed the stars of their vs and of
+    // every vertex around it, all locked in this batch: new candidates and
+    // normals for them once, now.
     ++stamp_;
     std::vector<uint32_t>& changed = dirty_;
     const size_t kept = changed.size();
