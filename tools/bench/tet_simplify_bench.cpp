@@ -1,0 +1,152 @@
+// Tet simplifier benchmark (issue 21): build time, collapses per second,
+// batch sizes, evasions per test, and per level (50, 20, 10, 5 % of the tets)
+// the scalar PSNR at random points (the paper's 7.2 measure) and the worst and
+// mean minimum dihedral angles.
+//
+//   tet_simplify_bench [--mesh ct|lox|bunny|hand] [--cost quadric|paper]
+//                      [--no-intersection] [--min-dihedral D] [--levels]
+//                      [--samples N] [--repeat N] [--boundary-weight W]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "tet_test_meshes.h"
+#include "tetsimplify/tet_simplify.h"
+
+using namespace mrsv;
+
+namespace {
+
+// Live tets after each collapse (index i: after i collapses).
+std::vector<uint64_t> tetCounts(const QuantizedTetMesh& mesh, const TetSimplifyResult& result) {
+  std::vector<std::array<uint32_t, 4>> tets = mesh.tets;
+  std::vector<uint8_t> alive(tets.size(), 1);
+  std::vector<std::vector<uint32_t>> star(mesh.positions.size());
+  for (uint32_t t = 0; t < tets.size(); ++t) {
+    for (uint32_t v : tets[t]) star[v].push_back(t);
+  }
+  std::vector<uint64_t> counts = {tets.size()};
+  uint64_t live = tets.size();
+  for (const auto& batch : result.batches) {
+    for (const TetCollapse& c : batch) {
+      for (uint32_t t : star[c.vt]) {
+        if (!alive[t]) continue;
+        auto& v = tets[t];
+        if (std::find(v.begin(), v.end(), c.vs) != v.end()) {
+          alive[t] = 0;
+          --live;
+          continue;
+        }
+        *std::find(v.begin(), v.end(), c.vt) = c.vs;
+        star[c.vs].push_back(t);
+      }
+      counts.push_back(live);
+    }
+  }
+  return counts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string which = "ct", cost = "quadric";
+  bool levels = false;
+  uint64_t samples = 1000000;
+  int repeat = 1;
+  TetSimplifyOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (a == "--mesh") which = next();
+    else if (a == "--cost") cost = next();
+    else if (a == "--no-intersection") options.boundary_intersection_test = false;
+    else if (a == "--min-dihedral") options.min_dihedral_degrees = std::atof(next().c_str());
+    else if (a == "--levels") levels = true;
+    else if (a == "--samples") samples = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--repeat") repeat = std::atoi(next().c_str());
+    else if (a == "--boundary-weight") options.quadric_boundary_weight = std::atof(next().c_str());
+    else if (a == "--ratio") options.batch_cost_ratio = std::atof(next().c_str());
+    else if (a == "--quantile") options.batch_min_fraction = std::atof(next().c_str());
+    else if (a == "--w-grad") options.weight_gradient = std::atof(next().c_str());
+    else if (a == "--w-vol") options.weight_volume = std::atof(next().c_str());
+    else if (a == "--w-equi") options.weight_equilateral = std::atof(next().c_str());
+    else if (a == "--w-len") options.weight_edge_length = std::atof(next().c_str());
+    else if (a == "--w-normal") options.weight_normal = std::atof(next().c_str());
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  options.cost = cost == "paper" ? TetCost::kPaper : TetCost::kQuadric;
+  QuantizedTetMesh mesh;
+  std::string error;
+  bool ok = false;
+  if (which == "ct") ok = test::paperCtCrop(&mesh, &error);
+  else if (which == "lox") ok = test::loxPost(&mesh, &error);
+  else if (which == "bunny") ok = test::readMeditTets(std::string(MRSV_SHARED_DATA) + "/tet/bunny_5433v_34055tet.mesh", &mesh, &error);
+  else if (which == "hand") ok = test::readMeditTets(std::string(MRSV_SHARED_DATA) + "/tet/hand_7234v_29998tet.mesh", &mesh, &error);
+  if (!ok) {
+    std::fprintf(stderr, "%s: %s\n", which.c_str(), error.c_str());
+    return 1;
+  }
+  std::printf("mesh %s: %zu vertices, %zu tets; cost %s, intersection test %s, min dihedral %.1f\n", which.c_str(),
+              mesh.positions.size(), mesh.tets.size(), cost.c_str(), options.boundary_intersection_test ? "on" : "off",
+              options.min_dihedral_degrees);
+  TetSimplifyResult result;
+  double best = 1e300;
+  for (int r = 0; r < repeat; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    const Error e = simplifyTets(mesh, options, &result);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!e.ok()) {
+      std::fprintf(stderr, "simplifyTets: %s\n", e.describe().c_str());
+      return 1;
+    }
+    best = std::min(best, s);
+  }
+  const TetSimplifyStats& st = result.stats;
+  std::printf("build %.3f s (best of %d), %llu collapses, %.0f collapses/s, %llu batches, %.1f collapses per batch\n",
+              best, repeat, (unsigned long long)st.collapses, double(st.collapses) / best,
+              (unsigned long long)st.batches, st.averageBatchSize());
+  std::printf("final %llu tets, %llu vertices\n", (unsigned long long)st.final_tets,
+              (unsigned long long)st.final_vertices);
+  std::printf("evaded: table %llu, link %llu, inversion %llu, degenerate %llu, min dihedral %llu, self-intersection %llu\n",
+              (unsigned long long)st.evaded_boundary_table, (unsigned long long)st.evaded_link,
+              (unsigned long long)st.evaded_inversion, (unsigned long long)st.evaded_degenerate,
+              (unsigned long long)st.evaded_min_dihedral, (unsigned long long)st.evaded_self_intersection);
+  if (!levels) return 0;
+  const bool has_field = !mesh.fields.empty();
+  const DihedralStats full = dihedralStats(mesh);
+  std::printf("%-8s %9s %9s %10s %9s %11s %12s\n", "level", "tets", "vertices", "psnr_dB", "outside", "worst_dih",
+              "mean_min_dih");
+  std::printf("%-8s %9zu %9zu %10s %9s %11.2f %12.2f\n", "100%", mesh.tets.size(), mesh.positions.size(), "-", "-",
+              full.worst, full.mean_minimum);
+  const std::vector<uint64_t> counts = tetCounts(mesh, result);
+  for (double fraction : {0.5, 0.2, 0.1, 0.05}) {
+    const uint64_t target = uint64_t(fraction * double(mesh.tets.size()));
+    size_t k = 0;
+    while (k < counts.size() && counts[k] > target) ++k;
+    if (k == counts.size()) {
+      std::printf("%-7.0f%% not reached (coarsest %llu tets)\n", 100 * fraction, (unsigned long long)counts.back());
+      continue;
+    }
+    QuantizedTetMesh level;
+    applyTetCollapses(mesh, result, k, &level);
+    const DihedralStats d = dihedralStats(level);
+    char name[16];
+    std::snprintf(name, sizeof(name), "%.0f%%", 100 * fraction);
+    if (has_field) {
+      const test::PsnrResult p = test::scalarPsnr(mesh, level, samples, 1);
+      std::printf("%-8s %9zu %9zu %10.2f %9llu %11.2f %12.2f\n", name, level.tets.size(), level.positions.size(),
+                  p.psnr, (unsigned long long)p.outside, d.worst, d.mean_minimum);
+    } else {
+      std::printf("%-8s %9zu %9zu %10s %9s %11.2f %12.2f\n", name, level.tets.size(), level.positions.size(), "-",
+                  "-", d.worst, d.mean_minimum);
+    }
+  }
+  return 0;
+}
