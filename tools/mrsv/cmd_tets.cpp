@@ -1,4 +1,5 @@
 // mrsv encode / decode for tetrahedral meshes: the PT stream (spec 7).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,7 +31,8 @@ const char kEncodeHelp[] =
     "  --weights G,V,E,L,N   weights of the paper's terms: scalar gradient, volume,\n"
     "                        equilateral, edge length, boundary normal (default 1,1,0.1,0.1,1)\n"
     "  --bits B              positions: bits per coordinate over the bounding box's longest\n"
-    "                        side, 1..30 (default 16)\n"
+    "                        side, 1..30 (default 16, or the fewest above that keep every\n"
+    "                        tet positive)\n"
     "  --field-bits B        fields: bits over each field's range, 1..30 (default 16; a\n"
     "                        field of integers spanning fewer values is kept exactly)\n"
     "  --base-tets N         stop simplifying at N tets (default: as far as the rules allow)\n"
@@ -135,9 +137,17 @@ int runTetEncode(int argc, char** argv) {
   if (!quiet && read_report.flipped)
     std::fprintf(stderr, "mrsv encode: %s: %llu negatively oriented tets turned positive\n", in.c_str(),
                  static_cast<unsigned long long>(read_report.flipped));
+  // Without --bits: 16, or the fewest bits above that keep every tet positive
+  // (meshes with slivers flatten or invert some on a coarse grid).
   QuantizedTets quantized;
-  if (Error e = quantizeTetMesh(mesh, position_bits, field_bits, &quantized); !e.ok())
-    return fail(cmd, in + ": " + e.field + ": " + e.message, kExitInvalidData);
+  Error quantize_error = quantizeTetMesh(mesh, position_bits, field_bits, &quantized);
+  for (int bits = position_bits + 2; !quantize_error.ok() && !args.has("bits") && bits <= 30; bits += 2) {
+    if (quantize_error.status != Status::kInvalidArgument || quantize_error.field != "tets") break;
+    if (!quiet) std::fprintf(stderr, "mrsv encode: %s: %s; trying %d bits\n", in.c_str(), quantize_error.message.c_str(), bits);
+    quantize_error = quantizeTetMesh(mesh, bits, field_bits, &quantized);
+  }
+  if (!quantize_error.ok())
+    return fail(cmd, in + ": " + quantize_error.field + ": " + quantize_error.message, kExitInvalidData);
   QuantizedTetMesh input;
   input.positions = quantized.positions;
   input.tets = quantized.tets;
@@ -167,6 +177,8 @@ int runTetEncode(int argc, char** argv) {
                  "mrsv encode: %s: %zu bytes; %zu vertices, %zu tets, %zu fields; base %llu vertices, %llu tets "
                  "(%llu bytes); %u splits in %u batches (%llu bytes, %.2f bits/split); simplify %.0f ms, "
                  "encode %.0f ms\n"
+                 "mrsv encode: per split: %.2f bits of connectivity (%.2f flags, %.2f cut), %.2f of geometry; "
+                 "%.2f bits per tet\n"
                  "mrsv encode: collapses evaded: %llu boundary table, %llu link condition, %llu inversion, "
                  "%llu degenerate, %llu min dihedral, %llu boundary self-intersection\n",
                  out.c_str(), stream.size(), mesh.positions.size(), mesh.tets.size(), mesh.fields.size(),
@@ -174,7 +186,10 @@ int runTetEncode(int argc, char** argv) {
                  static_cast<unsigned long long>(stats.base_tets), static_cast<unsigned long long>(stats.base_bytes),
                  stats.splits, stats.batches, static_cast<unsigned long long>(stats.split_bytes),
                  stats.splits ? 8.0 * stats.split_bytes / stats.splits : 0.0, ms(start, simplified),
-                 ms(simplified, encoded), static_cast<unsigned long long>(s.evaded_boundary_table),
+                 ms(simplified, encoded), (stats.flag_bits + stats.cut_bits) / std::max(1u, stats.splits),
+                 stats.flag_bits / std::max(1u, stats.splits), stats.cut_bits / std::max(1u, stats.splits),
+                 stats.value_bits / std::max(1u, stats.splits), 8.0 * stream.size() / std::max<size_t>(1, mesh.tets.size()),
+                 static_cast<unsigned long long>(s.evaded_boundary_table),
                  static_cast<unsigned long long>(s.evaded_link), static_cast<unsigned long long>(s.evaded_inversion),
                  static_cast<unsigned long long>(s.evaded_degenerate),
                  static_cast<unsigned long long>(s.evaded_min_dihedral),

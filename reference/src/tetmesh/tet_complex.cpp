@@ -76,11 +76,22 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
   link->triangles.clear();
   link->triangle_tet.clear();
   const std::vector<uint32_t>& star = incident[v];
+  if (link->stamp_of.size() < positions.size()) {
+    link->stamp_of.resize(positions.size(), 0);
+    link->local_of.resize(positions.size(), 0);
+  }
+  if (++link->stamp == 0) {
+    std::fill(link->stamp_of.begin(), link->stamp_of.end(), 0);
+    link->stamp = 1;
+  }
   for (uint32_t slot : star)
     for (uint32_t u : tets[slot])
-      if (u != v) link->vertices.push_back(u);
+      if (u != v && link->stamp_of[u] != link->stamp) {
+        link->stamp_of[u] = link->stamp;
+        link->vertices.push_back(u);
+      }
   std::sort(link->vertices.begin(), link->vertices.end());
-  link->vertices.erase(std::unique(link->vertices.begin(), link->vertices.end()), link->vertices.end());
+  for (uint32_t i = 0; i < link->vertices.size(); ++i) link->local_of[link->vertices[i]] = i;
   const uint32_t m = static_cast<uint32_t>(link->vertices.size());
   link->corner_begin.assign(m + 2, 0);
   for (uint32_t slot : star) {
@@ -88,7 +99,7 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
     int at = 0;
     while (at < 3 && t[at] != v) ++at;
     std::array<uint32_t, 3> tri;
-    for (int j = 0; j < 3; ++j) tri[j] = link->localIndex(t[kLinkOrder[at][j]]);
+    for (int j = 0; j < 3; ++j) tri[j] = link->local_of[t[kLinkOrder[at][j]]];
     link->triangles.push_back(tri);
     link->triangle_tet.push_back(slot);
     for (uint32_t p : tri) ++link->corner_begin[p + 2];
