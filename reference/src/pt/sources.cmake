@@ -10,4 +10,6 @@ set(MRSV_PT_DECODE_SOURCES
 set(MRSV_PT_ENCODE_SOURCES
   reference/src/pt/pt_encode.cpp)
 set(MRSV_PT_TESTS
-  reference/tests/pt_stream_test.cpp)
+  reference/tests/pt_stream_test.cpp
+  reference/tests/pt_real_data_test.cpp
+  reference/tests/shared_data.cpp)
