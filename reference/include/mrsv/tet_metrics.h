@@ -60,6 +60,34 @@ class TetLocator {
   std::unique_ptr<Impl> impl_;
 };
 
+// A field's value anywhere: interpolated in the tet holding the point, and
+// for a point in no tet, at the nearest point of the mesh's boundary
+// (interpolated on that boundary face). The field error measures B with it;
+// a remesher resamples a field at its new vertices with it.
+class TetFieldProbe {
+ public:
+  // `mesh` (which must pass checkTetMesh) and `values` (one per vertex) must
+  // outlive the probe.
+  TetFieldProbe(const TetMesh& mesh, const std::vector<double>& values);
+  ~TetFieldProbe();
+  TetFieldProbe(TetFieldProbe&&) noexcept;
+  TetFieldProbe& operator=(TetFieldProbe&&) noexcept;
+
+  struct Sample {
+    double value = 0.0;
+    bool inside = false;    // in a tet (else at the nearest boundary point)
+    double distance = 0.0;  // to that boundary point when outside
+  };
+  // False only for a point outside a mesh without a usable boundary (no
+  // face of nonzero area).
+  bool sample(const Point3& p, Sample* out, int64_t hint = -1) const;
+  const TetLocator& locator() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // --- volume and boundary ---------------------------------------------------
 
 // Sum of the signed tet volumes (an inverted tet counts negative).

@@ -17,6 +17,7 @@ set(MRSV_METRICS_SOURCES
   reference/src/metrics/tet_manifold.cpp
   reference/src/metrics/tet_self_intersection.cpp
   reference/src/metrics/tet_quality.cpp
+  reference/src/metrics/tet_field_probe.cpp
   reference/src/metrics/tet_field_error.cpp
   reference/src/metrics/tet_compare.cpp)
 set(MRSV_METRICS_TOOL_SOURCES

@@ -1,5 +1,4 @@
-// Closest-point distances with a CGAL AABB tree; the only translation unit of
-// the project that includes CGAL's geometry headers (they are slow to compile).
+// Closest-point distances with a CGAL AABB tree.
 #include "metrics/surface_distance.h"
 
 #include <CGAL/AABB_traits.h>
@@ -12,6 +11,8 @@
 #include <cmath>
 #include <mutex>
 #include <thread>
+
+#include "metrics/compensated_sum.h"
 
 namespace mrsv {
 namespace {
@@ -31,18 +32,6 @@ CgalPoint toCgal(const Point3& p) { return CgalPoint(p[0], p[1], p[2]); }
 // report progress, large enough that the hint chain (each query starts from
 // the previous answer) is rarely broken.
 constexpr size_t kChunk = 8192;
-
-// Neumaier's compensated sum: a million squared distances of similar size
-// would otherwise lose about six digits of the plain sum.
-struct CompensatedSum {
-  double sum = 0.0, carry = 0.0;
-  void add(double x) {
-    double t = sum + x;
-    carry += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
 
 struct ChunkResult {
   double max = -1.0;

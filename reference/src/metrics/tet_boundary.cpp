@@ -1,35 +1,19 @@
 // Volume and boundary surface of a tet mesh.
-#include <cmath>
 #include <limits>
 
+#include "metrics/compensated_sum.h"
 #include "metrics/tet_faces.h"
+#include "metrics/tet_geometry.h"
 #include "mrsv/tet_metrics.h"
 
 namespace mrsv {
-namespace {
-
-double signedVolume(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-          u[2] * (v[0] * w[1] - v[1] * w[0])) /
-         6.0;
-}
-
-}  // namespace
 
 double tetMeshVolume(const TetMesh& mesh) {
-  // Neumaier's compensated sum: a few hundred thousand small volumes.
-  double sum = 0.0, carry = 0.0;
-  for (const auto& t : mesh.tets) {
-    const double x = signedVolume(mesh.positions[t[0]], mesh.positions[t[1]],
-                                  mesh.positions[t[2]], mesh.positions[t[3]]);
-    const double s = sum + x;
-    carry += std::abs(sum) >= std::abs(x) ? (sum - s) + x : (x - s) + sum;
-    sum = s;
-  }
-  return sum + carry;
+  CompensatedSum sum;
+  for (const auto& t : mesh.tets)
+    sum.add(signedTetVolume(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
+                            mesh.positions[t[3]]));
+  return sum.value();
 }
 
 TriangleMesh tetBoundary(const TetMesh& mesh, std::vector<uint32_t>* tet_vertex) {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 
+#include "metrics/compensated_sum.h"
 #include "metrics/splitmix64.h"
-#include "metrics/surface_distance.h"
+#include "metrics/tet_geometry.h"
 #include "mrsv/tet_metrics.h"
 
 namespace mrsv {
@@ -17,49 +17,6 @@ const ScalarField* findField(const TetMesh& mesh, const std::string& name) {
     if (f.name == name) return &f;
   return nullptr;
 }
-
-double tetVolume(const TetMesh& mesh, const std::array<uint32_t, 4>& t) {
-  const Point3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]],
-               &d = mesh.positions[t[3]];
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-          u[2] * (v[0] * w[1] - v[1] * w[0])) /
-         6.0;
-}
-
-// Barycentric coordinates of q, a point of triangle (a, b, c) (the closest
-// point the AABB tree found), clamped into the triangle against rounding.
-std::array<double, 3> triangleBary(const Point3& q, const Point3& a, const Point3& b,
-                                   const Point3& c) {
-  double e0[3], e1[3], d[3];
-  for (int i = 0; i < 3; ++i) {
-    e0[i] = b[i] - a[i];
-    e1[i] = c[i] - a[i];
-    d[i] = q[i] - a[i];
-  }
-  auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-  const double d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1);
-  const double d20 = dot(d, e0), d21 = dot(d, e1);
-  const double den = d00 * d11 - d01 * d01;
-  double v = den > 0.0 ? (d11 * d20 - d01 * d21) / den : 0.0;
-  double w = den > 0.0 ? (d00 * d21 - d01 * d20) / den : 0.0;
-  v = std::clamp(v, 0.0, 1.0);
-  w = std::clamp(w, 0.0, 1.0 - v);
-  return {1.0 - v - w, v, w};
-}
-
-// Neumaier's compensated sum: 10^6 squared errors of similar size.
-struct CompensatedSum {
-  double sum = 0.0, carry = 0.0;
-  void add(double x) {
-    const double t = sum + x;
-    carry += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
 
 }  // namespace
 
@@ -83,7 +40,10 @@ bool measureTetFieldError(const TetMesh& a, const TetMesh& b, const TetFieldErro
   std::vector<double> cumulative(a.tets.size());
   double total = 0.0;
   for (size_t t = 0; t < a.tets.size(); ++t) {
-    total += std::max(tetVolume(a, a.tets[t]), 0.0);
+    const auto& tet = a.tets[t];
+    total += std::max(signedTetVolume(a.positions[tet[0]], a.positions[tet[1]],
+                                      a.positions[tet[2]], a.positions[tet[3]]),
+                      0.0);
     cumulative[t] = total;
   }
   if (!(total > 0.0)) {
@@ -94,12 +54,7 @@ bool measureTetFieldError(const TetMesh& a, const TetMesh& b, const TetFieldErro
   result->range = fa->values.empty() ? 0.0 : *hi - *lo;
 
   const TetLocator locator_a(a);
-  const TetLocator locator(b);
-  // B's boundary and its closest-point tree, built on the first sample
-  // outside B (none when B covers A's domain).
-  std::vector<uint32_t> boundary_vertex;
-  TriangleMesh boundary;
-  std::unique_ptr<SurfaceDistanceTree> boundary_tree;
+  const TetFieldProbe probe_b(b, fb->values);
 
   SplitMix64 rng{options.seed};
   CompensatedSum sum_abs, sum_sq;
@@ -127,28 +82,15 @@ bool measureTetFieldError(const TetMesh& a, const TetMesh& b, const TetFieldErro
     double va = 0.0, vb;
     if (!locator_a.interpolate(fa->values, p, &va, static_cast<int64_t>(t)))
       for (int k = 0; k < 4; ++k) va += w[k] * fa->values[tet[k]];
-    if (!locator.interpolate(fb->values, p, &vb)) {
-      if (!boundary_tree) {
-        boundary = tetBoundary(b, &boundary_vertex);
-        std::string why;
-        if (!checkSurfaceMesh(boundary, &why)) {
-          *error = "B's boundary: " + why;
-          return false;
-        }
-        boundary_tree = std::make_unique<SurfaceDistanceTree>(boundary);
-      }
-      uint32_t face;
-      const Point3 q = boundary_tree->closestPoint(p, &face);
-      const auto& tri = boundary.triangles[face];
-      const auto bary = triangleBary(q, boundary.positions[tri[0]], boundary.positions[tri[1]],
-                                     boundary.positions[tri[2]]);
-      vb = 0.0;
-      for (int k = 0; k < 3; ++k) vb += bary[k] * fb->values[boundary_vertex[tri[k]]];
+    TetFieldProbe::Sample sb;
+    if (!probe_b.sample(p, &sb)) {
+      *error = "a sample is outside B, and B's boundary has no face of nonzero area";
+      return false;
+    }
+    vb = sb.value;
+    if (!sb.inside) {
       ++result->outside_b;
-      const double dist =
-          std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                    (p[2] - q[2]) * (p[2] - q[2]));
-      result->outside_b_max_distance = std::max(result->outside_b_max_distance, dist);
+      result->outside_b_max_distance = std::max(result->outside_b_max_distance, sb.distance);
     }
     const double e = std::fabs(vb - va);
     result->max_abs = std::max(result->max_abs, e);
