@@ -27,4 +27,12 @@ TetMesh gridTetMesh(int nx, int ny, int nz, const std::array<double, 3>& origin,
 // references dropped; other sections skipped). Tets are taken as they are.
 bool readMeditTetMesh(const std::string& path, TetMesh* mesh, std::string* error);
 
+// A single-grid binary PLOT3D pair (big-endian, no record markers, no
+// IBLANK: the blunt fin and the combustion chamber of ../shared/data/tet),
+// each hexahedron cut into 5 tets, the cut alternating with the parity of
+// i + j + k so that neighbouring faces match; tets turned positive where the
+// grid is left-handed. The q file's density is the field "density".
+bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, TetMesh* mesh,
+                       std::string* error);
+
 }  // namespace mrsv::test

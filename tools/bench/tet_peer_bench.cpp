@@ -5,6 +5,7 @@
 //
 //   tet_peer_bench --ct                 the 32^3 crop of the Stanford CT head (178,746 tets)
 //   tet_peer_bench --mesh FILE.mesh     a MEDIT tet mesh, with a synthetic field
+//   tet_peer_bench --plot3d PREFIX      PREFIX.xyz + PREFIX.q (5 tets per hex, density)
 //   options: --fractions 50,20,10,5  --samples N  --data DIR (../shared/data)
 //            --iterations I (CGAL's, default 3)  --crop X,Y,Z (the crop's corner)
 #include <zstd.h>
@@ -93,7 +94,7 @@ void printQuality(const char* label, const TetQuality& q) {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: tet_peer_bench (--ct | --mesh FILE.mesh) [--fractions 50,20,10,5] "
+               "usage: tet_peer_bench (--ct | --mesh FILE.mesh | --plot3d PREFIX) [--fractions 50,20,10,5] "
                "[--samples N] [--data DIR] [--iterations I] [--crop X,Y,Z] [--json]\n");
   return 2;
 }
@@ -101,7 +102,7 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string data = MRSV_SHARED_DATA, mesh_file;
+  std::string data = MRSV_SHARED_DATA, mesh_file, plot3d;
   bool ct = false, json = false;
   std::vector<double> fractions = {50, 20, 10, 5};
   uint64_t samples = kDefaultTetSampleCount;
@@ -116,6 +117,8 @@ int main(int argc, char** argv) {
       json = true;
     } else if (a == "--mesh" && more) {
       mesh_file = argv[++i];
+    } else if (a == "--plot3d" && more) {
+      plot3d = argv[++i];
     } else if (a == "--data" && more) {
       data = argv[++i];
     } else if (a == "--samples" && more) {
@@ -132,7 +135,7 @@ int main(int argc, char** argv) {
       return usage();
     }
   }
-  if (ct == !mesh_file.empty()) return usage();
+  if (ct + !mesh_file.empty() + !plot3d.empty() != 1) return usage();
 
   TetMesh original;
   std::string error, name;
@@ -143,6 +146,12 @@ int main(int argc, char** argv) {
     }
     name = "CT head crop 32^3 at (" + std::to_string(corner[0]) + ", " + std::to_string(corner[1]) +
            ", " + std::to_string(corner[2]) + ")";
+  } else if (!plot3d.empty()) {
+    if (!test::readPlot3dTetMesh(plot3d + ".xyz", plot3d + ".q", &original, &error)) {
+      std::fprintf(stderr, "tet_peer_bench: %s\n", error.c_str());
+      return 1;
+    }
+    name = plot3d.substr(plot3d.find_last_of('/') + 1);
   } else {
     if (!test::readMeditTetMesh(mesh_file, &original, &error)) {
       std::fprintf(stderr, "tet_peer_bench: %s\n", error.c_str());
