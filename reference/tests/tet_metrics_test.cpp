@@ -396,5 +396,32 @@ TEST(TetMetrics, BunnyTetMeshIsValid) {
   expectValidRealMesh("bunny_5433v_34055tet.mesh", 34055, 670);
 }
 
+TEST(TetMetrics, Plot3dGridsAreValid) {
+  // The combustion chamber: 56 x 32 x 24 hexes of 5 tets, every one kept.
+  // The blunt fin's grid has 39 points twice (a collapsed line at k = 0):
+  // merged, its 77 collapsed tets are gone and the rest is a manifold with
+  // an embedded boundary (before merging: 77 flat tets, not a manifold, 352
+  // boundary self-intersections).
+  const struct {
+    const char* name;
+    size_t tets;
+  } grids[] = {{"combustion_chamber_plot3d_57x33x25_f32be", 215040},
+               {"bluntfin_plot3d_40x32x32_f32be", 187395 - 77}};
+  for (const auto& g : grids) {
+    SCOPED_TRACE(g.name);
+    TetMesh m;
+    std::string error;
+    const std::string prefix = std::string(MRSV_SHARED_DATA "/tet/") + g.name;
+    ASSERT_TRUE(test::readPlot3dTetMesh(prefix + ".xyz", prefix + ".q", &m, &error)) << error;
+    ASSERT_TRUE(checkTetMesh(m, &error)) << error;
+    EXPECT_EQ(m.tets.size(), g.tets);
+    const TetQuality q = measureTetQuality(m);
+    EXPECT_EQ(q.inverted, 0u);
+    EXPECT_EQ(q.degenerate, 0u);
+    EXPECT_TRUE(q.manifold.manifold());
+    EXPECT_EQ(q.boundary_self_intersections, 0);
+  }
+}
+
 }  // namespace
 }  // namespace mrsv

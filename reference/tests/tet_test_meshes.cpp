@@ -1,6 +1,7 @@
 // Grid tet meshes and a minimal MEDIT reader (see tet_test_meshes.h).
 #include "tet_test_meshes.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -167,7 +168,24 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
   // 5, 6 with their three neighbours each; the odd cut the other way round.
   const int cuts[2][5][4] = {{{0, 1, 2, 4}, {3, 2, 1, 7}, {5, 1, 4, 7}, {6, 4, 2, 7}, {1, 2, 4, 7}},
                              {{1, 0, 3, 5}, {2, 3, 0, 6}, {4, 5, 6, 0}, {7, 6, 5, 3}, {0, 3, 5, 6}}};
-  auto at = [&](int i, int j, int k) { return static_cast<uint32_t>((static_cast<size_t>(k) * nj + j) * ni + i); };
+  // Grid points at the same place (the blunt fin's grid collapses one line:
+  // 39 points of k = 0 are there twice) become one vertex, and the tets of
+  // the collapsed cells that lose a corner that way are left out.
+  std::vector<uint32_t> same(n);
+  {
+    std::vector<uint32_t> order(n);
+    for (size_t v = 0; v < n; ++v) order[v] = static_cast<uint32_t>(v);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return mesh->positions[a] != mesh->positions[b] ? mesh->positions[a] < mesh->positions[b] : a < b;
+    });
+    for (size_t r = 0; r < n; ++r)
+      same[order[r]] = r > 0 && mesh->positions[order[r]] == mesh->positions[order[r - 1]]
+                           ? same[order[r - 1]]
+                           : order[r];
+  }
+  auto at = [&](int i, int j, int k) {
+    return same[(static_cast<size_t>(k) * nj + j) * ni + i];
+  };
   for (int k = 0; k + 1 < nk; ++k)
     for (int j = 0; j + 1 < nj; ++j)
       for (int i = 0; i + 1 < ni; ++i)
@@ -175,6 +193,9 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
           std::array<uint32_t, 4> t;
           for (int c = 0; c < 4; ++c)
             t[c] = at(i + (cut[c] & 1), j + (cut[c] >> 1 & 1), k + (cut[c] >> 2));
+          if (t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] ||
+              t[2] == t[3])
+            continue;
           const auto &a = mesh->positions[t[0]], &b = mesh->positions[t[1]],
                      &c = mesh->positions[t[2]], &d = mesh->positions[t[3]];
           const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};

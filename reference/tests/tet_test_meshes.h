@@ -31,7 +31,9 @@ bool readMeditTetMesh(const std::string& path, TetMesh* mesh, std::string* error
 // IBLANK: the blunt fin and the combustion chamber of ../shared/data/tet),
 // each hexahedron cut into 5 tets, the cut alternating with the parity of
 // i + j + k so that neighbouring faces match; tets turned positive where the
-// grid is left-handed. The q file's density is the field "density".
+// grid is left-handed. Grid points at the same place are merged and the
+// tets that collapse are left out (the points merged stay, unused). The q
+// file's density is the field "density".
 bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, TetMesh* mesh,
                        std::string* error);
 

@@ -73,16 +73,22 @@ struct Run {
 // One remeshing of the input at `edge_length`.
 bool remesh(const TetMesh& in, const std::vector<std::pair<uint32_t, uint32_t>>& features,
             double edge_length, unsigned iterations, Run* run, std::string* error) {
+  // Only the vertices the tets use: a vertex without a cell makes CGAL's
+  // triangulation invalid (the blunt fin's merged grid points are such).
+  std::vector<int> index_of(in.positions.size(), -1);
   std::vector<Kernel::Point_3> points;
-  points.reserve(in.positions.size());
-  for (const auto& p : in.positions) points.emplace_back(p[0], p[1], p[2]);
+  for (const auto& t : in.tets)
+    for (uint32_t v : t)
+      if (index_of[v] < 0) {
+        index_of[v] = static_cast<int>(points.size());
+        points.emplace_back(in.positions[v][0], in.positions[v][1], in.positions[v][2]);
+      }
   // Every tet in subdomain 1: the faces between it and the outside (index
   // 0) are the boundary CGAL keeps the domain's shape by.
   std::vector<std::array<int, 5>> cells;
   cells.reserve(in.tets.size());
   for (const auto& t : in.tets)
-    cells.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2]),
-                     static_cast<int>(t[3]), 1});
+    cells.push_back({index_of[t[0]], index_of[t[1]], index_of[t[2]], index_of[t[3]], 1});
   Triangulation tr;
   std::vector<VertexHandle> handles;
   const std::map<std::array<int, 3>, Triangulation::Cell::Surface_patch_index> no_patches;
@@ -92,7 +98,8 @@ bool remesh(const TetMesh& in, const std::vector<std::pair<uint32_t, uint32_t>>&
   }
   ConstraintSet constraints;
   for (const auto& [a, b] : features) {
-    VertexHandle x = handles[a + 1], y = handles[b + 1];  // handles[0] is the infinite vertex
+    // handles[0] is the infinite vertex.
+    const VertexHandle x = handles[index_of[a] + 1], y = handles[index_of[b] + 1];
     constraints.insert(x < y ? VertexPair(x, y) : VertexPair(y, x));
   }
   const auto start = std::chrono::steady_clock::now();

@@ -169,9 +169,9 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(samples), peer.iterations, peer.feature_angle);
   printQuality("original", measureTetQuality(original));
 
-  std::printf("\n%6s %8s %8s %5s %8s %8s %8s %9s %9s %7s %10s %7s %7s %5s %4s %4s %6s %6s\n", "frac", "target",
+  std::printf("\n%6s %8s %8s %5s %8s %8s %8s %9s %9s %7s %10s %7s %7s %5s %4s %4s %6s %6s %6s\n", "frac", "target",
               "tets", "runs", "cgal_s", "all_s", "psnr_db", "max_err", "hausdorff", "h_rel",
-              "vol_rel", "dih_min", "dih_avg", "inv", "man", "self", "psnr_s", "cmp_s");
+              "vol_rel", "dih_min", "dih_avg", "inv", "man", "self", "out%", "psnr_s", "cmp_s");
   for (double fraction : fractions) {
     const auto target = static_cast<size_t>(std::llround(original.tets.size() * fraction / 100.0));
     bench::CgalPeerResult peer_result;
@@ -198,13 +198,15 @@ int main(int argc, char** argv) {
     }
     const TetQuality& q = r.quality_b;
     std::printf("%5.0f%% %8zu %8llu %5d %8.2f %8.2f %8.2f %9.4g %9.4g %7.4f %10.2e %7.2f %7.2f %5llu "
-                "%4s %4lld %6.2f %6.2f%s\n",
+                "%4s %4lld %6.2f %6.2f %6.2f%s\n",
                 fraction, target, static_cast<unsigned long long>(q.tets), peer_result.runs,
                 peer_result.seconds, peer_result.seconds_all, r.field.psnr_db, r.field.max_abs,
                 r.boundary.hausdorff, r.boundary.hausdorff / r.boundary.bbox_diagonal,
                 r.volume_difference_relative, q.min_dihedral_worst, q.min_dihedral_mean,
                 static_cast<unsigned long long>(q.inverted), q.manifold.manifold() ? "yes" : "NO",
-                static_cast<long long>(q.boundary_self_intersections), field_s, compare_s,
+                static_cast<long long>(q.boundary_self_intersections),
+                100.0 * static_cast<double>(r.field.outside_b) / static_cast<double>(r.field.samples),
+                field_s, compare_s,
                 peer_result.within_tolerance ? "" : "  (count off by more than 5 %)");
     if (json) std::printf("%s\n", tetCompareJson(r).c_str());
     std::fflush(stdout);

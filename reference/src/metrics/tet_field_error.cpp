@@ -56,16 +56,30 @@ bool measureTetFieldError(const TetMesh& a, const TetMesh& b, const TetFieldErro
   const TetLocator locator_a(a);
   const TetFieldProbe probe_b(b, fb->values);
 
-  SplitMix64 rng{options.seed};
+  // The samples come in the order of A's tets, so that consecutive ones are
+  // near each other in a mesh whose tets are stored coherently (a grid, a
+  // mesher's output) and the point location runs from cache: the sorted
+  // fractions of the total volume are the normalised running sums of N + 1
+  // exponential variates (uniform order statistics), generated twice from
+  // one stream, first for their total.
+  const uint64_t n = options.sample_count;
+  auto exponential = [](SplitMix64* g) { return -std::log1p(-g->unit()); };
+  double spacing_total = 0.0;
+  {
+    SplitMix64 g = splitMixStream(options.seed, 1, 0);
+    for (uint64_t i = 0; i <= n; ++i) spacing_total += exponential(&g);
+  }
+  SplitMix64 spacing = splitMixStream(options.seed, 1, 0);
+  SplitMix64 rng = splitMixStream(options.seed, 2, 0);
+  double running = 0.0;
+  size_t t = 0;
   CompensatedSum sum_abs, sum_sq;
-  for (uint64_t i = 0; i < options.sample_count; ++i) {
-    // A tet with probability proportional to its volume: the first whose
-    // running total exceeds a uniform fraction of the total.
-    const double target = rng.unit() * total;
-    const size_t t = std::min<size_t>(
-        static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), target) -
-                            cumulative.begin()),
-        a.tets.size() - 1);
+  for (uint64_t i = 0; i < n; ++i) {
+    // The tet whose share of the running volume holds the next fraction:
+    // each tet is chosen with probability proportional to its volume.
+    running += exponential(&spacing);
+    const double target = running / spacing_total * total;
+    while (t + 1 < a.tets.size() && !(target < cumulative[t])) ++t;
     // Uniform in the tet: the spacings of three sorted uniforms are
     // uniformly distributed barycentric coordinates.
     double u[3] = {rng.unit(), rng.unit(), rng.unit()};
