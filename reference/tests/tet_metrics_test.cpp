@@ -3,6 +3,8 @@
 // interpolation of a linear field across two unrelated meshes of one domain,
 // volumes and boundaries of boxes, inverted, flat, non-manifold and
 // self-intersecting complexes, and the real bunny tet mesh.
+#include "mrsv/tet_metrics.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include <random>
 
 #include "metrics/tet_predicates.h"
-#include "mrsv/tet_metrics.h"
 #include "tet_test_meshes.h"
 
 namespace mrsv {
@@ -98,8 +99,7 @@ TEST(TetMetrics, PointsOnSharedFacesGoToTheLowestTet) {
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) {
         Point3 mid;
-        for (int d = 0; d < 3; ++d)
-          mid[d] = 0.5 * (m.positions[t[i]][d] + m.positions[t[j]][d]);
+        for (int d = 0; d < 3; ++d) mid[d] = 0.5 * (m.positions[t[i]][d] + m.positions[t[j]][d]);
         points.push_back(mid);
       }
     for (int f = 0; f < 4; ++f) {
@@ -225,7 +225,8 @@ TEST(TetMetrics, BoundaryOfACubeIsClosedAndOutward) {
   std::vector<uint32_t> original;
   const TriangleMesh s = tetBoundary(m, &original);
   EXPECT_EQ(s.triangles.size(), static_cast<size_t>(6 * n * n * 2));
-  EXPECT_EQ(s.positions.size(), static_cast<size_t>((n + 1) * (n + 1) * (n + 1) - (n - 1) * (n - 1) * (n - 1)));
+  EXPECT_EQ(s.positions.size(),
+            static_cast<size_t>((n + 1) * (n + 1) * (n + 1) - (n - 1) * (n - 1) * (n - 1)));
   ASSERT_EQ(original.size(), s.positions.size());
   for (size_t v = 0; v < original.size(); ++v) EXPECT_EQ(s.positions[v], m.positions[original[v]]);
   // Closed and consistently oriented: every directed edge once, its reverse once.
@@ -301,8 +302,8 @@ TEST(TetMetrics, NonManifoldComplexesAreDetected) {
         second[i] = static_cast<uint32_t>(i);
       } else {
         second[i] = static_cast<uint32_t>(m.positions.size());
-        m.positions.push_back({corners[i][0] + shift[0], corners[i][1] + shift[1],
-                               corners[i][2] + shift[2]});
+        m.positions.push_back(
+            {corners[i][0] + shift[0], corners[i][1] + shift[1], corners[i][2] + shift[2]});
       }
     }
     m.tets = {{0, 1, 2, 3}, second};
@@ -345,7 +346,7 @@ TEST(TetMetrics, BoundarySelfIntersectionsAreCounted) {
   // Two disjoint tets that pass through each other: each is a manifold, the
   // boundary is not embedded.
   TetMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1},
+  m.positions = {{0, 0, 0},       {1, 0, 0},       {0, 1, 0},       {0, 0, 1},
                  {0.2, 0.2, 0.2}, {1.2, 0.2, 0.2}, {0.2, 1.2, 0.2}, {0.2, 0.2, 1.2}};
   m.tets = {{0, 1, 2, 3}, {4, 5, 6, 7}};
   const TetQuality q = measureTetQuality(m);

@@ -19,8 +19,8 @@ TetMesh gridTetMesh(int nx, int ny, int nz, const std::array<double, 3>& origin,
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
-        m.positions.push_back({origin[0] + i * spacing[0], origin[1] + j * spacing[1],
-                               origin[2] + k * spacing[2]});
+        m.positions.push_back(
+            {origin[0] + i * spacing[0], origin[1] + j * spacing[1], origin[2] + k * spacing[2]});
   if (value) {
     m.fields.push_back({field, {}});
     m.fields[0].values.reserve(m.positions.size());
@@ -59,9 +59,9 @@ bool readMeditTetMesh(const std::string& path, TetMesh* mesh, std::string* error
     return false;
   }
   // Numbers per entry of the sections skipped.
-  const std::map<std::string, int> skip = {{"Edges", 3},      {"Triangles", 4}, {"Quadrilaterals", 5},
-                                           {"Hexahedra", 9},  {"Corners", 1},   {"Ridges", 1},
-                                           {"RequiredVertices", 1}, {"RequiredEdges", 1}};
+  const std::map<std::string, int> skip = {
+      {"Edges", 3},   {"Triangles", 4}, {"Quadrilaterals", 5},   {"Hexahedra", 9},
+      {"Corners", 1}, {"Ridges", 1},    {"RequiredVertices", 1}, {"RequiredEdges", 1}};
   std::string word;
   while (in >> word) {
     if (word == "MeshVersionFormatted" || word == "Dimension") {
@@ -150,7 +150,8 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
     *error = "PLOT3D files too short";
     return false;
   }
-  const int ni = static_cast<int>(xyz[0]), nj = static_cast<int>(xyz[1]), nk = static_cast<int>(xyz[2]);
+  const int ni = static_cast<int>(xyz[0]), nj = static_cast<int>(xyz[1]),
+            nk = static_cast<int>(xyz[2]);
   const size_t n = static_cast<size_t>(ni) * nj * nk;
   if (ni < 2 || nj < 2 || nk < 2 || xyz.size() != 3 + 3 * n || q[0] != xyz[0] || q[1] != xyz[1] ||
       q[2] != xyz[2] || q.size() < 3 + 4 + 5 * n) {
@@ -166,8 +167,9 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
   // Corner c of a hex is (i + (c & 1), j + (c >> 1 & 1), k + (c >> 2)). The
   // even cut keeps corners 1, 2, 4, 7 for the middle tet and cuts off 0, 3,
   // 5, 6 with their three neighbours each; the odd cut the other way round.
-  const int cuts[2][5][4] = {{{0, 1, 2, 4}, {3, 2, 1, 7}, {5, 1, 4, 7}, {6, 4, 2, 7}, {1, 2, 4, 7}},
-                             {{1, 0, 3, 5}, {2, 3, 0, 6}, {4, 5, 6, 0}, {7, 6, 5, 3}, {0, 3, 5, 6}}};
+  const int cuts[2][5][4] = {
+      {{0, 1, 2, 4}, {3, 2, 1, 7}, {5, 1, 4, 7}, {6, 4, 2, 7}, {1, 2, 4, 7}},
+      {{1, 0, 3, 5}, {2, 3, 0, 6}, {4, 5, 6, 0}, {7, 6, 5, 3}, {0, 3, 5, 6}}};
   // Grid points at the same place (the blunt fin's grid collapses one line:
   // 39 points of k = 0 are there twice) become one vertex, and the tets of
   // the collapsed cells that lose a corner that way are left out.
@@ -176,16 +178,15 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
     std::vector<uint32_t> order(n);
     for (size_t v = 0; v < n; ++v) order[v] = static_cast<uint32_t>(v);
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      return mesh->positions[a] != mesh->positions[b] ? mesh->positions[a] < mesh->positions[b] : a < b;
+      return mesh->positions[a] != mesh->positions[b] ? mesh->positions[a] < mesh->positions[b]
+                                                      : a < b;
     });
     for (size_t r = 0; r < n; ++r)
       same[order[r]] = r > 0 && mesh->positions[order[r]] == mesh->positions[order[r - 1]]
                            ? same[order[r - 1]]
                            : order[r];
   }
-  auto at = [&](int i, int j, int k) {
-    return same[(static_cast<size_t>(k) * nj + j) * ni + i];
-  };
+  auto at = [&](int i, int j, int k) { return same[(static_cast<size_t>(k) * nj + j) * ni + i]; };
   for (int k = 0; k + 1 < nk; ++k)
     for (int j = 0; j + 1 < nj; ++j)
       for (int i = 0; i + 1 < ni; ++i)
@@ -201,7 +202,8 @@ bool readPlot3dTetMesh(const std::string& xyz_path, const std::string& q_path, T
           const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
           const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
           const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-          const double det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+          const double det = u[0] * (v[1] * w[2] - v[2] * w[1]) -
+                             u[1] * (v[0] * w[2] - v[2] * w[0]) +
                              u[2] * (v[0] * w[1] - v[1] * w[0]);
           if (det < 0) std::swap(t[2], t[3]);
           mesh->tets.push_back(t);

@@ -7,9 +7,8 @@
 #include <CGAL/property_map.h>
 #include <CGAL/tetrahedral_remeshing.h>
 
-#include <boost/unordered_set.hpp>
-
 #include <algorithm>
+#include <boost/unordered_set.hpp>
 #include <chrono>
 #include <cmath>
 #include <map>

@@ -30,12 +30,12 @@ struct CgalPeerOptions {
 };
 
 struct CgalPeerResult {
-  TetMesh mesh;               // positively oriented tets, every field of the input
+  TetMesh mesh;  // positively oriented tets, every field of the input
   size_t target_tets = 0;
-  double edge_length = 0.0;   // CGAL's target edge length of the run kept
+  double edge_length = 0.0;  // CGAL's target edge length of the run kept
   int runs = 0;
-  double seconds = 0.0;       // the run kept: CGAL's remeshing alone
-  double seconds_all = 0.0;   // every run, triangulation builds included
+  double seconds = 0.0;      // the run kept: CGAL's remeshing alone
+  double seconds_all = 0.0;  // every run, triangulation builds included
   size_t constrained_edges = 0;
   bool within_tolerance = false;  // else the closest run is kept
 };

@@ -80,22 +80,22 @@ void syntheticField(TetMesh* m) {
 }
 
 void printQuality(const char* label, const TetQuality& q) {
-  std::printf("%s: %llu tets, %llu vertices, volume %.6g, %llu boundary faces; inverted %llu, "
-              "degenerate %llu, manifold %s, boundary self-intersections %lld; min dihedral "
-              "worst %.2f mean %.2f deg\n",
-              label, static_cast<unsigned long long>(q.tets),
-              static_cast<unsigned long long>(q.vertices), q.volume,
-              static_cast<unsigned long long>(q.boundary_faces),
-              static_cast<unsigned long long>(q.inverted),
-              static_cast<unsigned long long>(q.degenerate), q.manifold.manifold() ? "yes" : "NO",
-              static_cast<long long>(q.boundary_self_intersections), q.min_dihedral_worst,
-              q.min_dihedral_mean);
+  std::printf(
+      "%s: %llu tets, %llu vertices, volume %.6g, %llu boundary faces; inverted %llu, "
+      "degenerate %llu, manifold %s, boundary self-intersections %lld; min dihedral "
+      "worst %.2f mean %.2f deg\n",
+      label, static_cast<unsigned long long>(q.tets), static_cast<unsigned long long>(q.vertices),
+      q.volume, static_cast<unsigned long long>(q.boundary_faces),
+      static_cast<unsigned long long>(q.inverted), static_cast<unsigned long long>(q.degenerate),
+      q.manifold.manifold() ? "yes" : "NO", static_cast<long long>(q.boundary_self_intersections),
+      q.min_dihedral_worst, q.min_dihedral_mean);
 }
 
 int usage() {
-  std::fprintf(stderr,
-               "usage: tet_peer_bench (--ct | --mesh FILE.mesh | --plot3d PREFIX) [--fractions 50,20,10,5] "
-               "[--samples N] [--data DIR] [--iterations I] [--crop X,Y,Z] [--json]\n");
+  std::fprintf(
+      stderr,
+      "usage: tet_peer_bench (--ct | --mesh FILE.mesh | --plot3d PREFIX) [--fractions 50,20,10,5] "
+      "[--samples N] [--data DIR] [--iterations I] [--crop X,Y,Z] [--json]\n");
   return 2;
 }
 
@@ -126,7 +126,8 @@ int main(int argc, char** argv) {
     } else if (a == "--iterations" && more) {
       peer.iterations = static_cast<unsigned>(std::stoul(argv[++i]));
     } else if (a == "--crop" && more) {
-      if (std::sscanf(argv[++i], "%d,%d,%d", &corner[0], &corner[1], &corner[2]) != 3) return usage();
+      if (std::sscanf(argv[++i], "%d,%d,%d", &corner[0], &corner[1], &corner[2]) != 3)
+        return usage();
     } else if (a == "--fractions" && more) {
       fractions.clear();
       std::stringstream list(argv[++i]);
@@ -169,9 +170,10 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(samples), peer.iterations, peer.feature_angle);
   printQuality("original", measureTetQuality(original));
 
-  std::printf("\n%6s %8s %8s %5s %8s %8s %8s %9s %9s %7s %10s %7s %7s %5s %4s %4s %6s %6s %6s\n", "frac", "target",
-              "tets", "runs", "cgal_s", "all_s", "psnr_db", "max_err", "hausdorff", "h_rel",
-              "vol_rel", "dih_min", "dih_avg", "inv", "man", "self", "out%", "psnr_s", "cmp_s");
+  std::printf("\n%6s %8s %8s %5s %8s %8s %8s %9s %9s %7s %10s %7s %7s %5s %4s %4s %6s %6s %6s\n",
+              "frac", "target", "tets", "runs", "cgal_s", "all_s", "psnr_db", "max_err",
+              "hausdorff", "h_rel", "vol_rel", "dih_min", "dih_avg", "inv", "man", "self", "out%",
+              "psnr_s", "cmp_s");
   for (double fraction : fractions) {
     const auto target = static_cast<size_t>(std::llround(original.tets.size() * fraction / 100.0));
     bench::CgalPeerResult peer_result;
@@ -197,17 +199,17 @@ int main(int argc, char** argv) {
       return 1;
     }
     const TetQuality& q = r.quality_b;
-    std::printf("%5.0f%% %8zu %8llu %5d %8.2f %8.2f %8.2f %9.4g %9.4g %7.4f %10.2e %7.2f %7.2f %5llu "
-                "%4s %4lld %6.2f %6.2f %6.2f%s\n",
-                fraction, target, static_cast<unsigned long long>(q.tets), peer_result.runs,
-                peer_result.seconds, peer_result.seconds_all, r.field.psnr_db, r.field.max_abs,
-                r.boundary.hausdorff, r.boundary.hausdorff / r.boundary.bbox_diagonal,
-                r.volume_difference_relative, q.min_dihedral_worst, q.min_dihedral_mean,
-                static_cast<unsigned long long>(q.inverted), q.manifold.manifold() ? "yes" : "NO",
-                static_cast<long long>(q.boundary_self_intersections),
-                100.0 * static_cast<double>(r.field.outside_b) / static_cast<double>(r.field.samples),
-                field_s, compare_s,
-                peer_result.within_tolerance ? "" : "  (count off by more than 5 %)");
+    std::printf(
+        "%5.0f%% %8zu %8llu %5d %8.2f %8.2f %8.2f %9.4g %9.4g %7.4f %10.2e %7.2f %7.2f %5llu "
+        "%4s %4lld %6.2f %6.2f %6.2f%s\n",
+        fraction, target, static_cast<unsigned long long>(q.tets), peer_result.runs,
+        peer_result.seconds, peer_result.seconds_all, r.field.psnr_db, r.field.max_abs,
+        r.boundary.hausdorff, r.boundary.hausdorff / r.boundary.bbox_diagonal,
+        r.volume_difference_relative, q.min_dihedral_worst, q.min_dihedral_mean,
+        static_cast<unsigned long long>(q.inverted), q.manifold.manifold() ? "yes" : "NO",
+        static_cast<long long>(q.boundary_self_intersections),
+        100.0 * static_cast<double>(r.field.outside_b) / static_cast<double>(r.field.samples),
+        field_s, compare_s, peer_result.within_tolerance ? "" : "  (count off by more than 5 %)");
     if (json) std::printf("%s\n", tetCompareJson(r).c_str());
     std::fflush(stdout);
   }

@@ -35,8 +35,9 @@ bool checkTetMesh(const TetMesh& mesh, std::string* error);
 // answered at once; otherwise exact orientation predicates decide, so a point
 // on a face shared by two tets, or in the rounding gap between them, is never
 // lost, and it belongs to the lowest-indexed tet whose closed set holds it.
-// The mesh must pass checkTetMesh and outlive the locator; inverted or
-// degenerate tets are never answered (their barycentric frame is not one).
+// The mesh must pass checkTetMesh and outlive the locator. Flat tets (exact
+// orientation zero) are never answered (they have no barycentric frame);
+// inverted ones are, by their unsigned shape.
 class TetLocator {
  public:
   explicit TetLocator(const TetMesh& mesh);
@@ -124,7 +125,7 @@ struct TetManifoldReport {
   // tet on a bad face, the lowest vertex of the first bad edge found, the
   // lowest bad vertex.
   int64_t first_bad_face_tet = -1;
-  int64_t first_bad_edge = -1;    // as a vertex of the edge (the lower index)
+  int64_t first_bad_edge = -1;  // as a vertex of the edge (the lower index)
   int64_t first_bad_vertex = -1;
   // Every face in one or two tets, oppositely oriented, every edge and
   // vertex link a path/cycle and a disk/sphere: a 3-manifold with boundary,
@@ -192,17 +193,21 @@ struct TetFieldErrorOptions {
 // The scalar field of B against A's at random positions uniformly spread over
 // A's volume: a tet of A chosen with probability proportional to its volume,
 // then a uniform point inside it (barycentric coordinates from the spacings
-// of three sorted uniforms). A's value there is interpolated in that tet
-// with A's locator, hinted with that tet (so equal meshes give equal values
-// and an error of exactly 0); B's in the tet of B that holds the point. A point in no tet of
-// B (where B's domain does not cover A's) takes B's value at the nearest
-// point of B's boundary, interpolated on that boundary face, and is counted.
+// of three sorted uniforms). A's value there is interpolated with A's
+// locator, hinted with that tet (so equal meshes give equal values and an
+// error of exactly 0); B's in the tet of B that holds the point. A point in
+// no tet of B (where B's domain does not cover A's) takes B's value at the
+// nearest point of B's boundary, interpolated on that boundary face, and is
+// counted.
+// The samples are drawn in the order of A's tets (sorted volume fractions),
+// which keeps the point location in cache; the same seed, meshes and count
+// give the same figures.
 struct TetFieldError {
   std::string field;
   uint64_t samples = 0;
-  uint64_t outside_b = 0;          // samples in no tet of B
+  uint64_t outside_b = 0;               // samples in no tet of B
   double outside_b_max_distance = 0.0;  // the farthest of them from B's boundary
-  double range = 0.0;              // max - min of A's field over A's vertices
+  double range = 0.0;                   // max - min of A's field over A's vertices
   double max_abs = 0.0;
   double mean_abs = 0.0;
   double rms = 0.0;
@@ -220,7 +225,7 @@ struct TetCompareOptions {
   TetFieldErrorOptions field;  // sample_count and seed also drive the boundary distance
   bool quality = true;         // measureTetQuality on both meshes
   bool self_intersections = true;
-  unsigned threads = 0;        // for the boundary distance; 0: every core
+  unsigned threads = 0;  // for the boundary distance; 0: every core
 };
 
 struct TetBoundaryDistance {

@@ -125,10 +125,11 @@ std::string tetCompareJson(const TetCompareReport& r) {
        ", \"tets\": " + std::to_string(r.b_tets) + "},\n";
   if (r.has_field) {
     const TetFieldError& f = r.field;
-    s += "  \"field\": {\"name\": " + quoted(f.field) + ", \"samples\": " + std::to_string(f.samples) +
-         ", \"psnr_db\": " + number(f.psnr_db) + ", \"rms\": " + number(f.rms) +
-         ", \"mean_abs\": " + number(f.mean_abs) + ", \"max_abs\": " + number(f.max_abs) +
-         ", \"range\": " + number(f.range) + ", \"outside_b\": " + std::to_string(f.outside_b) +
+    s += "  \"field\": {\"name\": " + quoted(f.field) +
+         ", \"samples\": " + std::to_string(f.samples) + ", \"psnr_db\": " + number(f.psnr_db) +
+         ", \"rms\": " + number(f.rms) + ", \"mean_abs\": " + number(f.mean_abs) +
+         ", \"max_abs\": " + number(f.max_abs) + ", \"range\": " + number(f.range) +
+         ", \"outside_b\": " + std::to_string(f.outside_b) +
          ", \"outside_b_max_distance\": " + number(f.outside_b_max_distance) + "},\n";
   } else {
     s += "  \"field\": null,\n";
@@ -140,7 +141,8 @@ std::string tetCompareJson(const TetCompareReport& r) {
   const double diag = d.bbox_diagonal > 0.0 ? d.bbox_diagonal : NAN;
   s += "  \"boundary\": {\"hausdorff\": " + number(d.hausdorff) + ", \"mean\": " + number(d.mean) +
        ", \"rms\": " + number(d.rms) + ", \"a_to_b_max\": " + number(d.a_to_b_max) +
-       ", \"b_to_a_max\": " + number(d.b_to_a_max) + ", \"bbox_diagonal\": " + number(d.bbox_diagonal) +
+       ", \"b_to_a_max\": " + number(d.b_to_a_max) +
+       ", \"bbox_diagonal\": " + number(d.bbox_diagonal) +
        ", \"hausdorff_relative\": " + number(d.hausdorff / diag) +
        ", \"rms_relative\": " + number(d.rms / diag) + "},\n";
   if (r.has_quality) {

@@ -18,8 +18,8 @@ constexpr uint8_t kOutwardFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 
 struct TetFaceUse {
   std::array<uint32_t, 3> key;  // the face's vertices, ascending
   uint32_t tet;
-  uint8_t face;        // 0..3, the corner opposite the face
-  bool odd;            // the outward order is an odd permutation of `key`
+  uint8_t face;  // 0..3, the corner opposite the face
+  bool odd;      // the outward order is an odd permutation of `key`
 };
 
 // The outward triangle (vertex indices) of face `face` of `tet`.

@@ -41,8 +41,8 @@ bool measureTetFieldError(const TetMesh& a, const TetMesh& b, const TetFieldErro
   double total = 0.0;
   for (size_t t = 0; t < a.tets.size(); ++t) {
     const auto& tet = a.tets[t];
-    total += std::max(signedTetVolume(a.positions[tet[0]], a.positions[tet[1]],
-                                      a.positions[tet[2]], a.positions[tet[3]]),
+    total += std::max(signedTetVolume(a.positions[tet[0]], a.positions[tet[1]], a.positions[tet[2]],
+                                      a.positions[tet[3]]),
                       0.0);
     cumulative[t] = total;
   }

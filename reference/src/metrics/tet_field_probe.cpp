@@ -19,7 +19,9 @@ std::array<double, 3> triangleBary(const Point3& q, const Point3& a, const Point
     e1[i] = c[i] - a[i];
     d[i] = q[i] - a[i];
   }
-  auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  auto dot = [](const double* x, const double* y) {
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  };
   const double d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1);
   const double d20 = dot(d, e0), d21 = dot(d, e1);
   const double den = d00 * d11 - d01 * d01;

@@ -47,7 +47,8 @@ bool frameOf(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
   // condition number that bounds the relative error of the inverse.
   double norm_m = 0.0, norm_inv = 0.0;
   for (int i = 0; i < 3; ++i) {
-    norm_m = std::max(norm_m, std::fabs(m[3 * i]) + std::fabs(m[3 * i + 1]) + std::fabs(m[3 * i + 2]));
+    norm_m =
+        std::max(norm_m, std::fabs(m[3 * i]) + std::fabs(m[3 * i + 1]) + std::fabs(m[3 * i + 2]));
     norm_inv = std::max(norm_inv, std::fabs(f->inv[3 * i]) + std::fabs(f->inv[3 * i + 1]) +
                                       std::fabs(f->inv[3 * i + 2]));
   }
@@ -66,7 +67,7 @@ bool frameOf(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
 
 struct TetLocator::Impl {
   const TetMesh* mesh = nullptr;
-  std::vector<Frame> frames;       // per tet
+  std::vector<Frame> frames;        // per tet
   std::vector<int8_t> orientation;  // per tet: exact sign; 0 = never answered
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   double inv_cell[3] = {0, 0, 0};  // cells per unit length, per axis
@@ -104,7 +105,8 @@ TetLocator::TetLocator(const TetMesh& mesh) : impl_(new Impl) {
     const auto& tet = mesh.tets[t];
     const Point3 &a = mesh.positions[tet[0]], &b = mesh.positions[tet[1]],
                  &c = mesh.positions[tet[2]], &d = mesh.positions[tet[3]];
-    if (frameOf(a, b, c, d, &m.frames[t])) m.orientation[t] = static_cast<int8_t>(exactOrientation(a, b, c, d));
+    if (frameOf(a, b, c, d, &m.frames[t]))
+      m.orientation[t] = static_cast<int8_t>(exactOrientation(a, b, c, d));
   }
   // The grid spans the bounding box of the vertices with about one cell per
   // tet, cubic cells (as near as whole counts allow).
@@ -234,8 +236,8 @@ bool TetLocator::interpolate(const std::vector<double>& values, const Point3& p,
   const int64_t t = locate(p, &b, hint);
   if (t < 0) return false;
   const auto& tet = impl_->mesh->tets[static_cast<size_t>(t)];
-  *value = b[0] * values[tet[0]] + b[1] * values[tet[1]] + b[2] * values[tet[2]] +
-           b[3] * values[tet[3]];
+  *value =
+      b[0] * values[tet[0]] + b[1] * values[tet[1]] + b[2] * values[tet[2]] + b[3] * values[tet[3]];
   return true;
 }
 

@@ -89,7 +89,8 @@ TetManifoldReport checkTetManifold(const TetMesh& mesh) {
       for (uint32_t w : link_faces.back()) link_vertices.push_back(w);
     }
     std::sort(link_vertices.begin(), link_vertices.end());
-    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()), link_vertices.end());
+    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()),
+                        link_vertices.end());
     auto local = [&](uint32_t w) {
       return static_cast<uint32_t>(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) -
                                    link_vertices.begin());
@@ -150,8 +151,8 @@ TetManifoldReport checkTetManifold(const TetMesh& mesh) {
         uint64_t unions = 0;
         for (size_t k = i; k < j; ++k) unions += uf.unite(opposite[k].x, opposite[k].y);
         std::sort(link_edges.begin(), link_edges.end());
-        const auto count = static_cast<uint64_t>(
-            std::unique(link_edges.begin(), link_edges.end()) - link_edges.begin());
+        const auto count = static_cast<uint64_t>(std::unique(link_edges.begin(), link_edges.end()) -
+                                                 link_edges.begin());
         if (count - unions != 1) {
           ++r.nonmanifold_edges;
           if (r.first_bad_edge < 0) r.first_bad_edge = static_cast<int64_t>(v);

@@ -63,7 +63,8 @@ TetQuality measureTetQuality(const TetMesh& mesh, const TetQualityOptions& optio
           const Point3 e = sub(x[j], x[i]);
           longest2 = std::max(longest2, dot(e, e));
         }
-      const double six_volume = std::fabs(dot(sub(x[1], x[0]), cross(sub(x[2], x[0]), sub(x[3], x[0]))));
+      const double six_volume =
+          std::fabs(dot(sub(x[1], x[0]), cross(sub(x[2], x[0]), sub(x[3], x[0]))));
       if (s == 0 || !(six_volume > 1e-12 * longest2 * std::sqrt(longest2))) ++q.degenerate;
     }
     dihedralRange(x, &lo, &hi);

@@ -32,10 +32,9 @@ uint64_t countBoundarySelfIntersections(const TriangleMesh& boundary) {
   PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
   uint64_t count = 0;
   // Counted as they come: the pairs of a badly broken mesh need no storage.
-  PMP::self_intersections(mesh, boost::make_function_output_iterator(
-                                    [&count](const std::pair<Mesh::Face_index, Mesh::Face_index>&) {
-                                      ++count;
-                                    }));
+  PMP::self_intersections(
+      mesh, boost::make_function_output_iterator(
+                [&count](const std::pair<Mesh::Face_index, Mesh::Face_index>&) { ++count; }));
   return count;
 }
 
