@@ -150,7 +150,7 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     g.invalid("mesh_step_zero", with_header(lambda p: put(p, 48, "<d", 0.0)), 301, "bad_mesh_header",
               hdr_at + 48, "6.2", "position_step 0")
     g.invalid("mesh_scalar_fields_without_scalar", with_header(lambda p: put(p, 64, "<d", 1.0)), 301,
-              "bad_mesh_header", hdr_at + 56, "6.2", "scalar_step set although scalar_bits is 0")
+              "bad_mesh_header", hdr_at + 64, "6.2", "scalar_step set although scalar_bits is 0")
     g.invalid("mesh_header_length", [("PHDR", chunks[0][1] + b"\0")] + chunks[1:], 117, "bad_chunk_length",
               offset_of(chunks, 0) + 4, "6.2", "a 73-byte PHDR")
 
