@@ -48,8 +48,9 @@ NOT_BY_VECTORS = {
     "RB.4-2": "overflow of products: UndefinedBehaviorSanitizer in CI, and too_many_samples_3d",
 }
 
-# Chapters whose rules are being written and not tagged yet: reported, not failed.
-PENDING = {}
+# Chapters whose rules are being written and not tagged yet, e.g. {"7"}: reported
+# as a NOTE instead of failing. Empty: every chapter with rules must be tagged.
+PENDING = set()
 
 
 def chapter_of(path):
@@ -197,9 +198,10 @@ def main():
                 print("coverage: NOTE " + message)
             else:
                 problems.append(message)
-    pending_files = {chapters[c]["file"] for c in PENDING if c in chapters}
+    # A chapter without any tag is reported once, above, not sentence by sentence.
+    untagged_files = {s["file"] for c, s in chapters.items() if c in PENDING or (s["rules"] and not s["tags"])}
     for file, line, text in untagged:
-        if file not in pending_files:
+        if file not in untagged_files:
             problems.append(f"{file}:{line}: a rule without a tag: {text}")
     for tag in sorted(rules, key=sort_key):
         if not vectors_of.get(tag) and tag not in NOT_BY_VECTORS:

@@ -8,11 +8,9 @@ rules named for it in vector_rules.py.
 import struct
 
 from array_coder import BitWriter, encode_line, huffman_table, weighted_long_prefix
-from pm_coder import PROBABILITY_ONE, IntegerModels, RangeEncoder
-from pm_writer import (Mesh, Models, Splitter, arc_normal, encode_base, first_use_order, header, other_axes,
-                       plane_axis, plane_offset)
-
-HALF = PROBABILITY_ONE // 2
+from pm_coder import IntegerModels, RangeEncoder
+from pm_writer import (Mesh, Models, Splitter, arc_normal, encode_base, first_use_order, header, plane_axis,
+                       plane_offset)
 
 
 def build_hand(v, H, chunk, ghdr, meta, canonical, MEND):
@@ -62,7 +60,7 @@ def grid_vectors(v, H, chunk, ghdr, meta, canonical, MEND):
     v.invalid("stored_grid_with_whdr", H + one + chunk("WHDR", whdr()) + graw + MEND, 116, "chunk_order",
               at + len(one), "3.3", "a WHDR chunk in a stored grid (coding 0)")
     # Two rules broken: the order of 3.1's table decides (row 4 before row 5).
-    v.invalid("ghdr_reserved_num_dims_order", H + chunk("GHDR", ghdr("uint8", [1], num_dims=0, flags=0x80)) + graw
+    v.invalid("ghdr_reserved_before_num_dims_order", H + chunk("GHDR", ghdr("uint8", [1], num_dims=0, flags=0x80)) + graw
               + MEND, 105, "reserved_nonzero", 23, "3.1, A.2",
               "grid_flags reserved bit and num_dims 0: the reserved bit is checked first")
 
@@ -82,7 +80,7 @@ def grid_vectors(v, H, chunk, ghdr, meta, canonical, MEND):
             14, 204, "bad_wavelet_header", "5.2", "has_residual with float32 samples")
     wavelet("whdr_reserved", [4], "int32", whdr(reserved=1), 15, 105, "reserved_nonzero", "5.2",
             "the reserved byte of WHDR is 1")
-    wavelet("whdr_reserved_order_order", [4], "int32", whdr(order=6, reserved=1), 8, 204, "bad_wavelet_header",
+    wavelet("whdr_order_before_reserved_order", [4], "int32", whdr(order=6, reserved=1), 8, 204, "bad_wavelet_header",
             "5.2, A.2", "order 6 and a reserved byte: order is checked first")
 
     # -- a hand-coded 1-D int32 grid, levels 0: one band, the samples themselves --
@@ -96,11 +94,10 @@ def grid_vectors(v, H, chunk, ghdr, meta, canonical, MEND):
             "the largest escape (prefix of 38 bits): 2^39 + 14, saturated to 2^35 - 1, clamped to int32")
     v.invalid("array_magnitude_prefix_39", H + g4 + w + chunk("GBND", gbnd(0, encode_line([20, 0, 0, 0], (0, 39))))
               + MEND, 206, "bad_entropy_payload", band_at + 20, "5.7.3", "an escape prefix of 39 one bits")
-    ww = chunk("WHDR", whdr())
-    v.invalid("weighted_magnitude_prefix_39", H + g4 + ww + chunk("GBND", gbnd(0, weighted_long_prefix(), flags=2))
+    v.invalid("weighted_magnitude_prefix_39", H + g4 + w + chunk("GBND", gbnd(0, weighted_long_prefix(), flags=2))
               + MEND, 206, "bad_entropy_payload", band_at + 20, "5.7.5",
               "weighted prediction: a magnitude prefix of 39 one bits")
-    v.invalid("band_reserved_step_order", H + g4 + w + chunk("GBND", gbnd(0, b"", step=1 << 35, reserved=1)) + MEND,
+    v.invalid("band_reserved_before_step_order", H + g4 + w + chunk("GBND", gbnd(0, b"", step=1 << 35, reserved=1)) + MEND,
               105, "reserved_nonzero", band_at + 11, "5.3, A.2", "reserved byte and step 2^35: reserved first")
     v.invalid("pbas_in_wavelet_grid", H + g4 + w + chunk("PBAS", b"\0" * 5) + chunk("GBND", gbnd(0, encode_line([1, 2, 3, 4])))
               + MEND, 116, "chunk_order", band_at, "5.1", "a PBAS chunk after WHDR in a wavelet-coded grid")
@@ -255,7 +252,7 @@ def mesh_vectors(v, H, chunk, MEND):
                 "origin y is a NaN")
     with_header("phdr_scalar_origin_without_scalar", lambda h: put("<d", h, 56, -0.0), 301, "bad_mesh_header", 56,
                 "6.2", "scalar_origin -0 although scalar_bits is 0")
-    with_header("phdr_reserved_step_order", lambda h: (put("<I", h, 20, 1), put("<d", h, 48, 0.0)), 105,
+    with_header("phdr_reserved_before_step_order", lambda h: (put("<I", h, 20, 1), put("<d", h, 48, 0.0)), 105,
                 "reserved_nonzero", 20, "6.2, A.2", "the reserved u32 and position_step 0: reserved first")
 
     # -- chunk order (6.1) and PSPL framing (6.7) --

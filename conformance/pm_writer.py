@@ -104,7 +104,7 @@ def first_use_order(positions, triangles, scalars=None):
 def header(mesh_vertices, base, batches, position_bits, scalar_bits=0, placement=0, move_detail=0,
            origin=(0.0, 0.0, 0.0), step=1.0, scalar_origin=0.0, scalar_step=0.0):
     """spec 6.2 mesh_header(): 72 bytes."""
-    return struct.pack("<BBBBIIIII3ddd d", placement, position_bits, scalar_bits, move_detail, mesh_vertices,
+    return struct.pack("<BBBBIIIII3dddd", placement, position_bits, scalar_bits, move_detail, mesh_vertices,
                        len(base.positions), len(base.triangles), batches, 0, *origin, step,
                        scalar_origin, scalar_step)
 
