@@ -143,9 +143,17 @@ def scan():
                 stats["tags"] += 1
                 if tag not in rules:
                     clause = tag[1:].rsplit("-", 1)[0]
-                    summary = re.sub(r"\s+", " ", plain.strip().strip("|")).strip()
+                    summary = sentence_of(text, "[%s]" % tag)
                     rules[tag] = {"clause": clause, "text": summary, "file": os.path.basename(path), "line": n}
     return rules, untagged, chapters
+
+
+def sentence_of(text, tag):
+    """The sentence (or table cell) of `text` that ends at `tag`, without tags."""
+    end = text.index(tag)
+    start = max(text.rfind(". ", 0, end) + 2, text.rfind("|", 0, end) + 1, text.rfind("; ", 0, end) + 2, 0)
+    sentence = TAG.sub("", text[start:end])
+    return re.sub(r"\s+", " ", re.sub(r"^\s*(- |\d+\. )", "", sentence)).strip()
 
 
 def sort_key(tag):
