@@ -23,6 +23,8 @@ constexpr size_t kTetHeaderFixedSize = 56;
 constexpr size_t kTetFieldRecordSize = 40;
 constexpr int kMaxTetFields = 8;
 constexpr size_t kTetFieldNameSize = 16;
+// B.6: the link of a vertex that is split has at most this many vertices.
+constexpr uint32_t kMaxSplitLinkVertices = 1024;
 struct PtField {
   uint8_t bits = 16;  // scalars are integers in [0, 2^bits)
   double origin = 0;

@@ -229,6 +229,8 @@ std::string codeBaseMesh(Coder& coder, PtContexts& ctx, const PtHeader& h, TetCo
   Point3i prev{0, 0, 0};
   std::vector<int32_t> prev_field(fc, 0);
   for (uint32_t v = 0; v < h.base_vertex_count; ++v) {
+    // A decoder stops at the first byte wanted past the end (206).
+    if (coder.overrun()) return "the coded data ends before the base mesh does";
     for (int a = 0; a < 3; ++a) {
       int32_t d = Coder::kEncoding ? mesh->positions[v][a] - prev[a] : 0;
       codeSigned(coder, ctx.base_position[a], &d);
@@ -249,6 +251,7 @@ std::string codeBaseMesh(Coder& coder, PtContexts& ctx, const PtHeader& h, TetCo
   }
   uint32_t used = 0;
   for (uint32_t t = 0; t < h.base_tet_count; ++t) {
+    if (coder.overrun()) return "the coded data ends before the base mesh does";
     for (int j = 0; j < 4; ++j) {
       uint32_t& corner = mesh->tets[t][j];
       const int fresh = coder.bit(&ctx.base_new_vertex[j], Coder::kEncoding && corner == used);

@@ -36,7 +36,12 @@ Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, cons
 // spec 7.7 one split record: the cut, then vt's position and values.
 std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTetMesh::Impl& s, uint32_t vs) {
   const PtHeader& h = s.header;
+  if (s.mesh.incident[vs].size() > 3 * size_t{kMaxSplitLinkVertices})
+    return "the star of vs has more tets than a link of " + std::to_string(kMaxSplitLinkVertices) + " vertices can hold";
   s.mesh.buildLink(vs, &s.link);
+  if (s.link.vertices.size() > kMaxSplitLinkVertices)
+    return "the link of vs has " + std::to_string(s.link.vertices.size()) + " vertices, more than " +
+           std::to_string(kMaxSplitLinkVertices);
   bool closed = false;
   std::string problem = pt::codeCut(coder, ctx, s.link, &s.scratch, &s.walk_local, &closed);
   if (!problem.empty()) return problem;
@@ -49,7 +54,10 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   if (!problem.empty()) return problem;
   s.mesh.positions.push_back(position);
   s.mesh.scalars.insert(s.mesh.scalars.end(), values, values + h.fields.size());
-  problem = s.applyNewSplit(vs, closed);
+  if (s.mesh.tets.size() + cutEdgeCount(static_cast<uint32_t>(s.walk_global.size()), closed) > h.tet_count)
+    problem = "the split would make more tets than tet_count";
+  else
+    problem = s.applyNewSplit(vs, closed);
   if (!problem.empty()) {
     s.mesh.positions.pop_back();
     s.mesh.scalars.resize(s.mesh.scalars.size() - h.fields.size());
@@ -145,8 +153,8 @@ Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOpt
   const Container& c = out->container;
   if (c.chunks.empty()) return {};
   if (c.chunks[0].chunk_type != kChunkTetHeader)
-    return Error{Status::kChunkOrder, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
-                 "not a progressive tet mesh stream (the first chunk is not THDR)"};
+    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
+                 "not a progressive tet mesh stream (the content header is not THDR; spec 1.6)"};
   if (Error e = parsePtHeader(c.chunks[0], &out->header); !e.ok()) return e;
   for (size_t i = 1; i < c.chunks.size(); ++i) {
     const ChunkView& chunk = c.chunks[i];

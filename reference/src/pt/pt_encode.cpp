@@ -318,6 +318,10 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
       if (!orderCut(edges, &walk_global, &closed))
         return fail(Status::kInvalidArgument, "collapses", where + ": the link of the edge is not a cycle or a path");
       s.mesh.buildLink(v, &s.link);
+      if (s.link.vertices.size() > kMaxSplitLinkVertices)
+        return fail(Status::kInvalidArgument, "collapses",
+                    where + ": the link of vs would have more than " + std::to_string(kMaxSplitLinkVertices) +
+                        " vertices (spec B.6)");
       if (closed == s.link.has_boundary)
         return fail(Status::kInvalidArgument, "collapses",
                     where + (closed ? ": an interior edge at a boundary vertex" : ": a boundary edge at an interior vertex"));

@@ -63,8 +63,9 @@ Error parsePtHeader(const ChunkView& chunk, PtHeader* out) {
                 "base_vertex_count must be at least 4 and at most vertex_count");
   if (h.base_tet_count < 1 || h.base_tet_count > kMaxTets)
     return fail(Status::kBadMeshHeader, 12, "base_tet_count", "base_tet_count must be 1 to 2^30");
-  if (h.tet_count < h.base_tet_count || h.tet_count > kMaxTets)
-    return fail(Status::kBadMeshHeader, 16, "tet_count", "tet_count must be base_tet_count to 2^30");
+  if (h.tet_count > kMaxTets || uint64_t{h.tet_count} < uint64_t{h.base_tet_count} + h.splitCount())
+    return fail(Status::kBadMeshHeader, 16, "tet_count",
+                "tet_count must be at least base_tet_count plus the splits (each adds a tet) and at most 2^30");
   if (h.batch_count > h.splitCount())
     return fail(Status::kBadMeshHeader, 20, "batch_count",
                 "batch_count above the number of splits (every batch holds at least one)");

@@ -26,42 +26,28 @@ uint32_t Link::localIndex(uint32_t vertex) const {
                                                : static_cast<uint32_t>(vertices.size());
 }
 
-// Finds the corner of p that starts at q: its next neighbour, or UINT32_MAX.
-static uint32_t nextAround(const Link& link, uint32_t p, uint32_t q) {
-  for (uint32_t k = link.corner_begin[p]; k < link.corner_begin[p + 1]; ++k)
-    if (link.corners[k][0] == q) return link.corners[k][1];
-  return UINT32_MAX;
-}
-
 bool Link::rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const {
   out->clear();
-  const uint32_t deg = degree(p);
+  const uint32_t begin = corner_begin[p], end = corner_begin[p + 1];
+  const uint32_t deg = end - begin;
   if (deg == 0) return false;
-  if (on_boundary[p]) {
-    // The fan starts at the neighbour that no triangle of p ends at.
-    start = UINT32_MAX;
-    for (uint32_t k = corner_begin[p]; k < corner_begin[p + 1] && start == UINT32_MAX; ++k) {
-      bool ends_somewhere = false;
-      for (uint32_t j = corner_begin[p]; j < corner_begin[p + 1]; ++j)
-        if (corners[j][1] == corners[k][0]) ends_somewhere = true;
-      if (!ends_somewhere) start = corners[k][0];
-    }
-    if (start == UINT32_MAX) return false;
-    out->push_back(start);
-    for (uint32_t step = 0; step < deg; ++step) {
-      const uint32_t next = nextAround(*this, p, out->back());
-      if (next == UINT32_MAX) return false;
-      out->push_back(next);
-    }
-    return nextAround(*this, p, out->back()) == UINT32_MAX;
+  uint32_t k = UINT32_MAX;
+  for (uint32_t j = begin; j < end && k == UINT32_MAX; ++j)
+    if (on_boundary[p] ? !corner_has_pred[j] : corners[j][0] == start) k = j;
+  if (k == UINT32_MAX) return false;
+  out->push_back(corners[k][0]);
+  // Around an interior p the corners form one cycle, around a boundary p one path.
+  for (uint32_t step = 0; step < deg; ++step) {
+    out->push_back(corners[k][1]);
+    // Back at the start early: the corners form several cycles (a pinch).
+    if (step + 1 < deg && corners[k][1] == out->front()) return false;
+    k = corner_next[k];
+    if (k == UINT32_MAX) break;
   }
-  out->push_back(start);
-  for (uint32_t step = 1; step < deg; ++step) {
-    const uint32_t next = nextAround(*this, p, out->back());
-    if (next == UINT32_MAX || next == start) return false;
-    out->push_back(next);
-  }
-  return nextAround(*this, p, out->back()) == start;
+  if (on_boundary[p]) return k == UINT32_MAX && out->size() == deg + 1;
+  if (k == UINT32_MAX || out->back() != out->front()) return false;
+  out->pop_back();
+  return out->size() == deg;
 }
 
 void TetComplex::buildIncidence() {
@@ -112,16 +98,34 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
       link->corners[link->corner_begin[tri[j] + 1]++] = {tri[(j + 1) % 3], tri[(j + 2) % 3], f};
   }
   link->corner_begin.pop_back();
+  // Around each p: which corner follows which (q -> r, then r -> ...), and
+  // which corners nothing leads to (they start the fan of a boundary p).
+  const uint32_t corner_count = static_cast<uint32_t>(link->corners.size());
+  link->corner_next.assign(corner_count, UINT32_MAX);
+  link->corner_has_pred.assign(corner_count, 0);
+  if (link->corner_of_q.size() < m) link->corner_of_q.resize(m);
   link->on_boundary.assign(m, 0);
   link->has_boundary = false;
-  for (const auto& tri : link->triangles)
-    for (int j = 0; j < 3; ++j) {
-      const uint32_t a = tri[j], b = tri[(j + 1) % 3];
-      if (link->triangleFrom(b, a) < 0) {
-        link->on_boundary[a] = link->on_boundary[b] = 1;
-        link->has_boundary = true;
+  for (uint32_t p = 0; p < m; ++p) {
+    const uint32_t begin = link->corner_begin[p], end = link->corner_begin[p + 1];
+    for (uint32_t k = begin; k < end; ++k) link->corner_of_q[link->corners[k][0]] = UINT32_MAX;
+    for (uint32_t k = begin; k < end; ++k) link->corner_of_q[link->corners[k][0]] = k;
+    for (uint32_t k = begin; k < end; ++k) {
+      const uint32_t r = link->corners[k][1];
+      // corner_of_q[r] is only meaningful when r starts a corner of p.
+      const uint32_t j = link->corner_of_q[r];
+      if (j >= begin && j < end && link->corners[j][0] == r) {
+        link->corner_next[k] = j;
+        link->corner_has_pred[j] = 1;
       }
     }
+    for (uint32_t k = begin; k < end; ++k)
+      if (!link->corner_has_pred[k]) {
+        // The edge p -> q has no triangle on its other side.
+        link->on_boundary[p] = link->on_boundary[link->corners[k][0]] = 1;
+        link->has_boundary = true;
+      }
+  }
 }
 
 std::string checkLinkIsSphereOrDisk(const Link& link) {

@@ -25,6 +25,8 @@ struct Link {
   std::vector<uint32_t> triangle_tet;              // the tet slot of each triangle
   std::vector<uint32_t> corner_begin;              // CSR over local vertices
   std::vector<std::array<uint32_t, 3>> corners;    // (q, r, triangle) for local vertex p's triangle (p, q, r)
+  std::vector<uint32_t> corner_next;               // the corner of p starting where corner k ends, or UINT32_MAX
+  std::vector<uint8_t> corner_has_pred;            // some corner of p ends where corner k starts
   std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
   bool has_boundary = false;
 
@@ -43,6 +45,7 @@ struct Link {
   // stamp is the current one (no sort or search per corner).
   std::vector<uint32_t> local_of, stamp_of;
   uint32_t stamp = 0;
+  std::vector<uint32_t> corner_of_q;  // per local vertex: the corner of the vertex at hand starting there
 };
 
 class TetComplex {
