@@ -31,4 +31,8 @@ int runTetEncode(int argc, char** argv);
 int runTetDecode(const Args& args, const std::string& in, const std::string& out,
                  const std::vector<uint8_t>& bytes, const DecodeOptions& options);
 
+// mrsv compare of two tet meshes (cmd_compare_tets.cpp).
+bool isTetCompare(const Args& args);
+int runTetCompare(const Args& args, uint64_t samples, uint64_t seed, unsigned threads);
+
 }  // namespace mrsv::cli
