@@ -334,15 +334,16 @@ def build():
 
 
 CODED_PREFIX = "vectors/coded_"
+PT_PREFIX = "vectors/pt_"
 
 
 def coded_entries():
-    """The manifest entries written by make_coded_vectors.py, as committed."""
+    """The manifest entries written by make_coded_vectors.py and pt_vectors.py, as committed."""
     path = os.path.join(HERE, "manifest.json")
     if not os.path.exists(path):
         return []
     with open(path, encoding="utf-8") as f:
-        return [e for e in json.load(f)["vectors"] if e["file"].startswith(CODED_PREFIX)]
+        return [e for e in json.load(f)["vectors"] if e["file"].startswith((CODED_PREFIX, PT_PREFIX))]
 
 
 def profile_of(data):
@@ -379,7 +380,7 @@ def main():
     args = parser.parse_args()
     v = build()
     outputs = dict(v.files)
-    # The coded vectors (make_coded_vectors.py) share the manifest: keep them.
+    # The coded and PT vectors (make_coded_vectors.py, pt_vectors.py) share the manifest: keep them.
     entries = [with_rules(e, v.files[e["file"]]) for e in v.entries] + \
         [with_rules(e, open(os.path.join(HERE, e["file"]), "rb").read()) for e in coded_entries()]
     outputs["manifest.json"] = write_manifest(entries)
