@@ -92,16 +92,21 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
   }
   for (uint32_t p = 0; p < m; ++p) link->corner_begin[p + 2] += link->corner_begin[p + 1];
   link->corners.resize(3 * link->triangles.size());
+  link->triangle_corner.resize(link->triangles.size());
   for (uint32_t f = 0; f < link->triangles.size(); ++f) {
     const auto& tri = link->triangles[f];
-    for (int j = 0; j < 3; ++j)
-      link->corners[link->corner_begin[tri[j] + 1]++] = {tri[(j + 1) % 3], tri[(j + 2) % 3], f};
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t k = link->corner_begin[tri[j] + 1]++;
+      link->corners[k] = {tri[(j + 1) % 3], tri[(j + 2) % 3], f};
+      link->triangle_corner[f][j] = k;
+    }
   }
   link->corner_begin.pop_back();
   // Around each p: which corner follows which (q -> r, then r -> ...), and
   // which corners nothing leads to (they start the fan of a boundary p).
   const uint32_t corner_count = static_cast<uint32_t>(link->corners.size());
   link->corner_next.assign(corner_count, UINT32_MAX);
+  link->corner_prev.assign(corner_count, UINT32_MAX);
   link->corner_has_pred.assign(corner_count, 0);
   if (link->corner_of_q.size() < m) link->corner_of_q.resize(m);
   link->on_boundary.assign(m, 0);
@@ -116,6 +121,7 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
       const uint32_t j = link->corner_of_q[r];
       if (j >= begin && j < end && link->corners[j][0] == r) {
         link->corner_next[k] = j;
+        link->corner_prev[j] = k;
         link->corner_has_pred[j] = 1;
       }
     }

@@ -26,13 +26,21 @@ struct Link {
   std::vector<uint32_t> corner_begin;              // CSR over local vertices
   std::vector<std::array<uint32_t, 3>> corners;    // (q, r, triangle) for local vertex p's triangle (p, q, r)
   std::vector<uint32_t> corner_next;               // the corner of p starting where corner k ends, or UINT32_MAX
+  std::vector<uint32_t> corner_prev;               // the corner of p ending where corner k starts, or UINT32_MAX
   std::vector<uint8_t> corner_has_pred;            // some corner of p ends where corner k starts
+  std::vector<std::array<uint32_t, 3>> triangle_corner;  // the corner of each triangle at its j-th vertex
   std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
   bool has_boundary = false;
 
   uint32_t degree(uint32_t p) const { return corner_begin[p + 1] - corner_begin[p]; }
   // The triangle (p, q, ...) through p whose next corner is q, or -1.
   int64_t triangleFrom(uint32_t p, uint32_t q) const;
+  // The triangle across the edge from triangle f's j-th vertex to its next
+  // one (it holds that edge reversed), or -1 on the link's boundary.
+  int64_t across(uint32_t f, int j) const {
+    const uint32_t k = corner_prev[triangle_corner[f][j]];
+    return k == UINT32_MAX ? -1 : static_cast<int64_t>(corners[k][2]);
+  }
   // p's neighbours in rotation order (q -> r for each triangle (p, q, r))
   // starting at `start`, or at the start of the fan when p is on the
   // boundary. For an interior p that is the cycle of its deg neighbours;

@@ -35,11 +35,12 @@ std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, boo
     }
   }
   for (size_t q = 0; q < s->queue.size(); ++q) {
-    const auto& tri = link.triangles[s->queue[q]];
+    const uint32_t f = s->queue[q];
+    const auto& tri = link.triangles[f];
     for (int j = 0; j < 3; ++j) {
       const uint32_t a = tri[j], b = tri[(j + 1) % 3];
       if (onCut(a, b)) continue;
-      const int64_t g = link.triangleFrom(b, a);
+      const int64_t g = link.across(f, j);
       if (g < 0) continue;
       if (s->triangle_side[g] == 2) return "the cut does not separate the link";
       if (s->triangle_side[g] == 0) {
