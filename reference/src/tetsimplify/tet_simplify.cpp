@@ -123,6 +123,13 @@ class TetSimplifier {
   // target was neither vs nor vt just compares its candidate with x -> vs.
   void updateAfterCollapse(uint32_t vs, uint32_t vt);
   Outcome check(uint32_t vs, uint32_t vt, uint32_t* vanishing);
+  // Whether all of v's boundary faces lie in one plane (exactly). Collapsing
+  // a boundary edge of such a v then needs no intersection test: the new
+  // faces lie in the same plane, each oriented as the face it replaces (the
+  // orientation test of the tet below it sees to that), so they triangulate
+  // the same polygon, star-shaped from vs, and the boundary as a point set
+  // does not change. (Every boundary collapse inside a flat side of a grid.)
+  bool planarFan(uint32_t v);
   void lockStar(uint32_t v);
 
   const TetSimplifyOptions& options_;
@@ -353,7 +360,7 @@ Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
   *vanishing = ring;
   if (outcome != Outcome::kOk) return outcome;
   if (!link_.holds(complex_, vs, vt, !options_.allow_boundary_cases_2_3)) return Outcome::kLink;
-  if (boundary_moves) {
+  if (boundary_moves && !planarFan(vt)) {
     for (size_t i = 0; i < new_faces_.size(); ++i) {
       if (index_.clashes(complex_, new_faces_[i], vt)) return Outcome::kSelfIntersection;
       for (size_t j = 0; j < i; ++j) {
@@ -364,6 +371,29 @@ Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
     }
   }
   return Outcome::kOk;
+}
+
+bool TetSimplifier::planarFan(uint32_t v) {
+  constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  const IPoint* plane[3] = {nullptr, nullptr, nullptr};
+  bool planar = true;
+  complex_.forEachTet(v, [&](uint32_t t, uint32_t corner) {
+    const uint8_t mask = complex_.boundaryMask(t);
+    if (!planar || mask == 0) return;
+    const auto& w = complex_.tet(t);
+    for (uint32_t f = 0; f < 4; ++f) {
+      if (f == corner || !(mask >> f & 1)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const IPoint& p = complex_.position(w[kFace[f][i]]);
+        if (!plane[0]) {
+          for (int j = 0; j < 3; ++j) plane[j] = &complex_.position(w[kFace[f][j]]);
+          break;
+        }
+        if (tetsimplify::orient3d(*plane[0], *plane[1], *plane[2], p) != 0) planar = false;
+      }
+    }
+  });
+  return planar;
 }
 
 void TetSimplifier::lockStar(uint32_t v) {
