@@ -13,6 +13,7 @@ packages=(
   clang libclang-rt-14-dev                  # libFuzzer and the sanitizer runtimes
   zstd libzstd-dev                          # the ../shared/data files are zstd frames
   python3                                   # conformance runner and vector generator
+  python3-vtk9 python3-meshio               # the real clients of our .vtu/.vtk files (tet_clients_test)
 )
 
 missing=()

@@ -125,5 +125,24 @@ if [ "$(stat -c %s "$work/cow_wide.mrsv")" -lt "$(stat -c %s "$work/cow.mrsv")" 
 expect 0 "$mrsv" decode --quiet --fraction 0.1 "$work/cow_wide.mrsv" "$work/cow_wide10.ply"
 expect 2 "$mrsv" encode --wide-batches -0.1 "$cow" "$work/x.mrsv"; stderr_has "from 0 to 1"; one_line_stderr
 
+# Tet meshes: help, a grid and an .mrsv grid made into tets, conversion, one-line errors.
+tet=$root/../shared/data/tet
+expect 0 "$mrsv" tetrahedralize --help; stdout_has "Usage: mrsv tetrahedralize"
+expect 0 "$mrsv" help tetrahedralize; stdout_has "6 tets per cube"
+expect 1 "$mrsv" tetrahedralize --dims 128,128 --type int16 "$crop" "$work/t.vtu"; stderr_has "3-D only"; one_line_stderr
+head -c 4096 "$crop" >"$work/g.raw"
+expect 0 "$mrsv" encode --quiet --dims 16,16,16 --type uint8 "$work/g.raw" "$work/g.mrsv"
+expect 0 "$mrsv" tetrahedralize --quiet "$work/g.mrsv" "$work/g.vtk"; stdout_has "4096 vertices, 20250 tets, 1 fields (value)"
+expect 0 "$mrsv" tetrahedralize --quiet --crop 1,2,3,4,5,6 "$work/g.mrsv" "$work/g.node"; stdout_has "120 vertices, 360 tets"
+if [ -s "$work/g.node" ] && [ -s "$work/g.ele" ]; then ok; else bad "OUT.node did not write .node and .ele"; fi
+expect 0 "$mrsv" tetrahedralize "$work/g.ele" "$work/g2.vtu"; stdout_has "120 vertices, 360 tets, 1 fields"
+expect 2 "$mrsv" tetrahedralize "$work/g.vtk" "$work/g.obj"; stderr_has "must end in"; one_line_stderr
+expect 2 "$mrsv" tetrahedralize "$work/g.vtk" "$work/g.vtk"; stderr_has "refusing to overwrite"
+expect 3 "$mrsv" tetrahedralize "$work/missing.vtu" "$work/x.vtu"; one_line_stderr
+expect 0 "$mrsv" tetrahedralize --quiet "$tet/bunny_5433v_34055tet.mesh" "$work/bunny.vtu"; stdout_has "5433 vertices, 34055 tets"
+printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1\n1 1 1 2 0\n' >"$work/bad.mesh"
+expect 1 "$mrsv" tetrahedralize "$work/bad.mesh" "$work/x.vtu"; stderr_has "bad.mesh:8: tet 1: vertex index 2 is out of range"; one_line_stderr
+if [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed tetrahedralize left an output"; fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

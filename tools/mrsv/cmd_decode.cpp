@@ -8,6 +8,7 @@
 #include "mrsv/grid_formats.h"
 #include "mrsv/grid.h"
 #include "mrsv/progressive_mesh.h"
+#include "mrsv/progressive_tet_mesh.h"
 #include "mrsv/raw_grid.h"
 
 namespace mrsv::cli {
@@ -22,6 +23,14 @@ const char kHelp[] =
     "  --vertices N          the level with N vertices (base..full)\n"
     "  --fraction F          the finest level with at most F times the full triangle count\n"
     "(default: every split decoded; --canonical writes spec 6.8's canonical mesh output).\n"
+    "\n"
+    "A PT stream (spec 7) decodes to a tet mesh: OUT.vtu (VTK XML), OUT.vtk (legacy),\n"
+    "OUT.mesh (MEDIT) or OUT.node (TetGen, with OUT.ele), fields as point data, at the\n"
+    "level chosen by one of:\n"
+    "  --tets N              the finest level with at most N tets\n"
+    "  --vertices N          the level with N vertices (base..full)\n"
+    "  --fraction F          the finest level with at most F times the full tet count\n"
+    "(default: every split decoded; --canonical writes spec 7.8's canonical output).\n"
     "\n"
     "Decode an MRSV grid. OUT is chosen by its extension: .nrrd (with a header),\n"
     "  .pgm (2-D uint8 or uint16), or else a headerless raw file of the stream's sample\n"
@@ -48,7 +57,7 @@ int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "vertices", "fraction"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "tets", "vertices", "fraction"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -83,8 +92,10 @@ int runDecode(int argc, char** argv) {
     options.container.allow_partial_tail = true;
   }
   if (isProgressiveMeshStream(bytes.data(), bytes.size())) return runMeshDecode(args, in, out, bytes, options);
-  if (args.has("faces") || args.has("vertices") || args.has("fraction"))
-    return fail(cmd, in + ": --faces, --vertices and --fraction are for PM streams; this is a grid", kExitUsage);
+  if (isProgressiveTetStream(bytes.data(), bytes.size())) return runTetDecode(args, in, out, bytes, options);
+  if (args.has("faces") || args.has("tets") || args.has("vertices") || args.has("fraction"))
+    return fail(cmd, in + ": --faces, --tets, --vertices and --fraction are for mesh streams; this is a grid",
+                kExitUsage);
   if (levels > 0 && args.flag("canonical"))
     return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
   progress.update(0.2);

@@ -176,6 +176,7 @@ bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::
 }  // namespace
 
 int runEncode(int argc, char** argv) {
+  if (isTetEncode(argc, argv)) return runTetEncode(argc, argv);
   if (isMeshEncode(argc, argv)) return runMeshEncode(argc, argv);
   const char* cmd = "encode";
   Args args;

@@ -9,6 +9,7 @@
 #include "mrsv/file_io.h"
 #include "mrsv/grid.h"
 #include "mrsv/progressive_mesh.h"
+#include "mrsv/progressive_tet_mesh.h"
 
 namespace mrsv::cli {
 namespace {
@@ -52,6 +53,9 @@ std::string chunkRole(const ChunkType& type) {
   if (type == kChunkMeshHeader) return "mesh header";
   if (type == kChunkBaseMesh) return "base mesh";
   if (type == kChunkSplits) return "vertex-split batch (coarse to fine)";
+  if (type == kChunkTetHeader) return "tet mesh header";
+  if (type == kChunkTetBase) return "base tet mesh";
+  if (type == kChunkTetSplits) return "tet vertex-split batch (coarse to fine)";
   if (type == kChunkEnd) return "end";
   return type.critical() ? "unknown critical" : "unknown ancillary (skipped)";
 }
@@ -160,6 +164,45 @@ InfoView gridView(const DecodedGrid& grid) {
 }
 
 // spec 6.2: the PM header, and how much of the stream the bytes hold.
+InfoView tetView(const DecodedTetMesh& mesh) {
+  InfoView v{&mesh.container, &mesh.metadata, "", ""};
+  const Container& c = mesh.container;
+  if (c.chunks.empty()) {
+    v.summary = "empty prefix (file header only)";
+    return v;
+  }
+  const PtHeader& h = mesh.header;
+  if (h.vertex_count == 0) {
+    v.summary = "content header not readable";
+    return v;
+  }
+  const uint32_t level = mesh.has_mesh ? mesh.mesh.splitsDecoded() : 0;
+  char buf[768];
+  std::snprintf(buf, sizeof buf,
+                "progressive tet mesh, %u vertices, %u tets (base %u vertices, %u tets), %u splits in %u batches, "
+                "%u-bit positions (step %g)",
+                h.vertex_count, h.tet_count, h.base_vertex_count, h.base_tet_count, h.splitCount(), h.batch_count,
+                h.position_bits, h.position_step);
+  v.summary = buf;
+  std::string fields_json;
+  for (const PtField& f : h.fields) {
+    v.summary += ", field '" + f.name + "' (" + std::to_string(f.bits) + " bits)";
+    std::snprintf(buf, sizeof buf, "%s{\"name\": \"%s\", \"bits\": %u, \"origin\": %.17g, \"step\": %.17g}",
+                  fields_json.empty() ? "" : ", ", f.name.c_str(), unsigned{f.bits}, f.origin, f.step);
+    fields_json += buf;
+  }
+  v.summary += ", decoded " + std::to_string(mesh.batches_decoded) + "/" + std::to_string(h.batch_count) +
+               " batches (" + std::to_string(level) + " splits)" + countText(c);
+  std::snprintf(buf, sizeof buf,
+                "  \"tets\": {\"vertex_count\": %u, \"tet_count\": %u, \"base_vertex_count\": %u, "
+                "\"base_tet_count\": %u, \"batch_count\": %u, \"position_bits\": %u, \"position_step\": %.17g, "
+                "\"origin\": [%.17g, %.17g, %.17g], \"batches_decoded\": %u, \"splits_decoded\": %u, \"fields\": [",
+                h.vertex_count, h.tet_count, h.base_vertex_count, h.base_tet_count, h.batch_count, h.position_bits,
+                h.position_step, h.origin[0], h.origin[1], h.origin[2], mesh.batches_decoded, level);
+  v.json_content = buf + fields_json + "]},\n";
+  return v;
+}
+
 InfoView meshView(const DecodedMesh& mesh) {
   InfoView v{&mesh.container, &mesh.metadata, "", ""};
   const Container& c = mesh.container;
@@ -263,9 +306,13 @@ int runInfo(int argc, char** argv) {
   if (!readWholeFile(file, &bytes, &error)) return fail(cmd, file + ": " + error, kExitIo);
   DecodedGrid grid;
   DecodedMesh mesh;
+  DecodedTetMesh tets;
   Error e;
   InfoView view;
-  if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
+  if (isProgressiveTetStream(bytes.data(), bytes.size())) {
+    e = decodeProgressiveTetMesh(bytes.data(), bytes.size(), DecodeOptions{}, &tets);
+    view = tetView(tets);
+  } else if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
     e = decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &mesh);
     view = meshView(mesh);
   } else {
@@ -298,6 +345,22 @@ int runCheck(int argc, char** argv) {
     if (!readWholeFile(file, &bytes, &error)) {
       fail(cmd, file + ": " + error, kExitIo);
       if (status == kExitOk) status = kExitIo;
+      continue;
+    }
+    if (isProgressiveTetStream(bytes.data(), bytes.size())) {
+      DecodedTetMesh decoded;
+      Error e = decodeProgressiveTetMesh(bytes.data(), bytes.size(), DecodeOptions{}, &decoded);
+      if (!e.ok()) {
+        reportError(cmd, file, e);
+        status = kExitInvalidData;
+      } else if (!args.flag("quiet")) {
+        const PtHeader& h = decoded.header;
+        std::printf("%s: ok: progressive tet mesh, %u vertices, %u tets (base %u, %u tets), %u splits in %u "
+                    "batches, every record checked; %u-bit positions, %zu fields%s\n",
+                    file.c_str(), h.vertex_count, h.tet_count, h.base_vertex_count, h.base_tet_count, h.splitCount(),
+                    h.batch_count, unsigned{h.position_bits}, h.fields.size(),
+                    decoded.container.complete ? "" : "; a prefix (no MEND)");
+      }
       continue;
     }
     if (isProgressiveMeshStream(bytes.data(), bytes.size())) {

@@ -205,8 +205,9 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
                   const std::vector<uint8_t>& bytes, const DecodeOptions& options) {
   const char* cmd = "decode";
   std::string error;
-  if (args.has("levels") || args.has("endian"))
-    return fail(cmd, in + ": --levels and --endian are for grids; a PM stream takes --faces, --vertices or --fraction",
+  if (args.has("levels") || args.has("endian") || args.has("tets"))
+    return fail(cmd, in + ": --levels, --endian and --tets are not for PM streams; a PM stream takes --faces, "
+                     "--vertices or --fraction",
                 kExitUsage);
   int chosen = args.has("faces") + args.has("vertices") + args.has("fraction");
   if (chosen > 1) return fail(cmd, "give at most one of --faces, --vertices and --fraction", kExitUsage);

@@ -14,6 +14,7 @@ int runDecode(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runCheck(int argc, char** argv);
 int runCompare(int argc, char** argv);
+int runTetrahedralize(int argc, char** argv);
 
 // Meshes (cmd_mesh.cpp): encode dispatches when an argument names a mesh file;
 // decode and check dispatch on the stream's first chunk.
@@ -22,5 +23,12 @@ int runMeshEncode(int argc, char** argv);
 class Args;
 int runMeshDecode(const Args& args, const std::string& in, const std::string& out,
                   const std::vector<uint8_t>& bytes, const DecodeOptions& options);
+
+// Tet meshes (cmd_tets.cpp): encode dispatches when an argument names a tet
+// mesh file; decode, info and check dispatch on the stream's first chunk.
+bool isTetEncode(int argc, char** argv);
+int runTetEncode(int argc, char** argv);
+int runTetDecode(const Args& args, const std::string& in, const std::string& out,
+                 const std::vector<uint8_t>& bytes, const DecodeOptions& options);
 
 }  // namespace mrsv::cli

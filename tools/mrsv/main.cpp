@@ -20,6 +20,7 @@ const char kHelp[] =
     "  info     print the chunk table, header and metadata of an .mrsv file\n"
     "  check    validate .mrsv files; one line per file naming any broken rule\n"
     "  compare  distances between two triangle meshes (Hausdorff, mean, RMS; Metro-like)\n"
+    "  tetrahedralize  tet meshes from grids and PLOT3D data; tet mesh format conversion\n"
     "\n"
     "'mrsv COMMAND --help' describes each command. 'mrsv --version' prints versions.\n"
     "Exit status: 0 success, 1 invalid input data, 2 usage error, 3 file error.\n";
@@ -35,6 +36,7 @@ const Command kCommands[] = {
     {"info", mrsv::cli::runInfo},
     {"check", mrsv::cli::runCheck},
     {"compare", mrsv::cli::runCompare},
+    {"tetrahedralize", mrsv::cli::runTetrahedralize},
 };
 
 }  // namespace

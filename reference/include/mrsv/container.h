@@ -44,6 +44,9 @@ constexpr ChunkType kChunkResidual{{'G', 'R', 'E', 'S'}};
 constexpr ChunkType kChunkMeshHeader{{'P', 'H', 'D', 'R'}};
 constexpr ChunkType kChunkBaseMesh{{'P', 'B', 'A', 'S'}};
 constexpr ChunkType kChunkSplits{{'P', 'S', 'P', 'L'}};
+constexpr ChunkType kChunkTetHeader{{'T', 'H', 'D', 'R'}};
+constexpr ChunkType kChunkTetBase{{'T', 'B', 'A', 'S'}};
+constexpr ChunkType kChunkTetSplits{{'T', 'S', 'P', 'L'}};
 
 // True for the critical types this decoder implements.
 bool isKnownCriticalChunk(const ChunkType& type);

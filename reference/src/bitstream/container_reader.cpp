@@ -56,7 +56,7 @@ bool isChunkTypeSyntax(const ChunkType& type) {
 
 // spec: 2.5. A content header opens the file and says what the file holds.
 bool isContentHeader(const ChunkType& type) {
-  return type == kChunkGridHeader || type == kChunkMeshHeader;
+  return type == kChunkGridHeader || type == kChunkMeshHeader || type == kChunkTetHeader;
 }
 
 std::string printable(const ChunkType& type) {
@@ -81,7 +81,7 @@ bool isKnownCriticalChunk(const ChunkType& type) {
   return type == kChunkEnd || type == kChunkGridHeader || type == kChunkGridStored ||
          type == kChunkWaveletHeader || type == kChunkNodataMask || type == kChunkBand ||
          type == kChunkResidual || type == kChunkMeshHeader || type == kChunkBaseMesh ||
-         type == kChunkSplits;
+         type == kChunkSplits || type == kChunkTetHeader || type == kChunkTetBase || type == kChunkTetSplits;
 }
 
 Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,
@@ -173,7 +173,7 @@ Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& op
     bool header_chunk = isContentHeader(chunk.chunk_type);
     if (out->chunks.empty() && !header_chunk)
       return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(),
-                  "the first chunk must be a content header (GHDR or PHDR)");
+                  "the first chunk must be a content header (GHDR, PHDR or THDR)");
     if (!out->chunks.empty() && header_chunk)
       return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(), "a second content header");
     if (chunk.chunk_type == kChunkMeta) {

@@ -1,0 +1,143 @@
+// spec: 7.3 the mesh a PT decoder holds, moving between levels; 7.8 canonical output.
+#include <algorithm>
+#include <cstring>
+
+#include "pt/pt_state.h"
+
+namespace mrsv {
+
+std::string ProgressiveTetMesh::Impl::startFromBase() {
+  mesh.buildIncidence();
+  std::string problem = mesh.checkManifold();
+  tet_count_after.clear();
+  level = 0;
+  return problem;
+}
+
+std::string ProgressiveTetMesh::Impl::applyNewSplit(uint32_t vs, bool closed) {
+  const uint32_t vt = mesh.vertexCount() - 1;
+  if (std::string problem = splitRegion(link, walk_local, closed, &scratch, &region); !problem.empty()) return problem;
+  walk_global.clear();
+  for (uint32_t local : walk_local) walk_global.push_back(link.vertices[local]);
+  mesh.incident.emplace_back();
+  std::string problem = applySplit(&mesh, vs, vt, walk_global.data(), static_cast<uint32_t>(walk_global.size()),
+                                   closed, region.data(), static_cast<uint32_t>(region.size()), &scratch);
+  if (!problem.empty()) {
+    mesh.incident.pop_back();
+    return problem;
+  }
+  PtSplitRecord r;
+  r.vs = vs;
+  r.moved_begin = static_cast<uint32_t>(moved.size());
+  r.moved_count = static_cast<uint32_t>(region.size());
+  r.cut_begin = static_cast<uint32_t>(cuts.size());
+  r.cut_length = static_cast<uint32_t>(walk_global.size());
+  r.closed = closed;
+  moved.insert(moved.end(), region.begin(), region.end());
+  cuts.insert(cuts.end(), walk_global.begin(), walk_global.end());
+  splits.push_back(r);
+  tet_count_after.push_back(static_cast<uint32_t>(mesh.tets.size()));
+  ++level;
+  return "";
+}
+
+void ProgressiveTetMesh::Impl::redo(uint32_t k) {
+  const PtSplitRecord& r = splits[k];
+  const uint32_t vt = header.base_vertex_count + k;
+  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count,
+             &scratch);
+}
+
+void ProgressiveTetMesh::Impl::undo(uint32_t k) {
+  const PtSplitRecord& r = splits[k];
+  const uint32_t vt = header.base_vertex_count + k;
+  undoSplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
+}
+
+ProgressiveTetMesh::ProgressiveTetMesh() : impl_(std::make_unique<Impl>()) {}
+ProgressiveTetMesh::~ProgressiveTetMesh() = default;
+ProgressiveTetMesh::ProgressiveTetMesh(ProgressiveTetMesh&&) noexcept = default;
+ProgressiveTetMesh& ProgressiveTetMesh::operator=(ProgressiveTetMesh&&) noexcept = default;
+
+const PtHeader& ProgressiveTetMesh::header() const { return impl_->header; }
+uint32_t ProgressiveTetMesh::splitsDecoded() const { return static_cast<uint32_t>(impl_->splits.size()); }
+uint32_t ProgressiveTetMesh::level() const { return impl_->level; }
+uint32_t ProgressiveTetMesh::vertexCount() const {
+  // No vertices before the base mesh is read (a prefix without TBAS).
+  return impl_->mesh.tets.empty() ? 0 : impl_->header.base_vertex_count + impl_->level;
+}
+uint32_t ProgressiveTetMesh::tetCount() const { return static_cast<uint32_t>(impl_->mesh.tets.size()); }
+
+uint32_t ProgressiveTetMesh::tetCountAt(uint32_t level) const {
+  level = std::min(level, splitsDecoded());
+  return level == 0 ? impl_->header.base_tet_count : impl_->tet_count_after[level - 1];
+}
+
+uint32_t ProgressiveTetMesh::finestLevelWithin(uint64_t max_tets) const {
+  // Tet counts only grow with the level (every split adds at least one tet).
+  const auto& after = impl_->tet_count_after;
+  if (impl_->header.base_tet_count > max_tets) return 0;
+  return static_cast<uint32_t>(std::upper_bound(after.begin(), after.end(), max_tets) - after.begin());
+}
+
+void ProgressiveTetMesh::setLevel(uint32_t level) {
+  level = std::min(level, splitsDecoded());
+  while (impl_->level < level) impl_->redo(impl_->level++);
+  while (impl_->level > level) impl_->undo(--impl_->level);
+}
+
+std::vector<std::array<int32_t, 3>> ProgressiveTetMesh::quantizedPositions() const {
+  const auto& p = impl_->mesh.positions;
+  return {p.begin(), p.begin() + vertexCount()};
+}
+
+std::vector<int32_t> ProgressiveTetMesh::quantizedScalars() const {
+  const auto& s = impl_->mesh.scalars;
+  return {s.begin(), s.begin() + size_t{vertexCount()} * impl_->header.fields.size()};
+}
+
+std::vector<std::array<uint32_t, 4>> ProgressiveTetMesh::tets() const { return impl_->mesh.tets; }
+
+TetMesh ProgressiveTetMesh::mesh() const {
+  const PtHeader& h = impl_->header;
+  const uint32_t n = vertexCount();
+  const size_t fc = h.fields.size();
+  TetMesh out;
+  out.positions.resize(n);
+  for (uint32_t v = 0; v < n; ++v)
+    for (int a = 0; a < 3; ++a)
+      out.positions[v][a] = h.origin[a] + impl_->mesh.positions[v][a] * h.position_step;
+  out.tets = impl_->mesh.tets;
+  for (size_t f = 0; f < fc; ++f) {
+    ScalarField field;
+    field.name = h.fields[f].name;
+    field.values.resize(n);
+    for (uint32_t v = 0; v < n; ++v)
+      field.values[v] = h.fields[f].origin + impl_->mesh.scalars[v * fc + f] * h.fields[f].step;
+    out.fields.push_back(std::move(field));
+  }
+  return out;
+}
+
+std::vector<uint8_t> canonicalTetMeshOutput(const ProgressiveTetMesh& mesh) {
+  const PtHeader& h = mesh.header();
+  const uint32_t n = mesh.vertexCount();
+  const size_t fc = h.fields.size();
+  const auto& state = mesh.state().mesh;
+  std::string head = "mrsv-canonical-tets 1 " + std::to_string(n) + " " + std::to_string(mesh.tetCount()) + " " +
+                     std::to_string(h.position_bits) + " " + std::to_string(fc) + "\n";
+  std::vector<uint8_t> out(head.begin(), head.end());
+  out.reserve(out.size() + size_t{n} * (12 + 4 * fc) + size_t{mesh.tetCount()} * 16);
+  auto put32 = [&](uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  };
+  for (uint32_t v = 0; v < n; ++v) {
+    for (int a = 0; a < 3; ++a) put32(static_cast<uint32_t>(state.positions[v][a]));
+    for (size_t f = 0; f < fc; ++f) put32(static_cast<uint32_t>(state.scalars[v * fc + f]));
+  }
+  for (const Tet& t : state.tets)
+    for (uint32_t v : t) put32(v);
+  return out;
+}
+
+}  // namespace mrsv

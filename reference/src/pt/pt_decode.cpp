@@ -1,0 +1,168 @@
+// spec: 7.1 decoding a PT stream: THDR, TBAS, then TSPL batches.
+#include <algorithm>
+#include <new>
+#include <string>
+
+#include "common/byte_reader.h"
+#include "pt/pt_coding.h"
+#include "pt/pt_state.h"
+
+namespace mrsv {
+
+bool isProgressiveTetStream(const uint8_t* data, size_t size) {
+  return size >= kFileHeaderSize + 4 && data[12] == 'T' && data[13] == 'H' && data[14] == 'D' && data[15] == 'R';
+}
+
+namespace {
+
+// spec Annex B.6: what a decoder holds for the whole stream, estimated from
+// THDR before anything is allocated: per vertex its position, values and tet
+// list; per tet its corners and four list entries; per split its record and
+// about 16 moved tets and cut vertices.
+uint64_t memoryNeeded(const PtHeader& h) {
+  return uint64_t{h.vertex_count} * (12 + 4 * h.fields.size() + 24) + uint64_t{h.tet_count} * (16 + 16) +
+         uint64_t{h.splitCount()} * (sizeof(PtSplitRecord) + 4 + 64);
+}
+
+Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, const std::string& field) {
+  if (rc.overrun() != 0)
+    return Error{Status::kBadEntropyPayload, offset, field, "coded data ends before the records do"};
+  if (rc.consumed() != size)
+    return Error{Status::kBadEntropyPayload, offset, field,
+                 std::to_string(size - rc.consumed()) + " bytes of coded data left over"};
+  return {};
+}
+
+// spec 7.7 one split record: the cut, then vt's position and values.
+std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTetMesh::Impl& s, uint32_t vs) {
+  const PtHeader& h = s.header;
+  s.mesh.buildLink(vs, &s.link);
+  bool closed = false;
+  std::string problem = pt::codeCut(coder, ctx, s.link, &s.scratch, &s.walk_local, &closed);
+  if (!problem.empty()) return problem;
+  s.walk_global.clear();
+  for (uint32_t local : s.walk_local) s.walk_global.push_back(s.link.vertices[local]);
+  Point3i position{0, 0, 0};
+  int32_t values[kMaxTetFields] = {};
+  problem = pt::codeSplitValues(coder, ctx, h, s.mesh, vs, s.walk_global.data(),
+                                static_cast<uint32_t>(s.walk_global.size()), &position, values);
+  if (!problem.empty()) return problem;
+  s.mesh.positions.push_back(position);
+  s.mesh.scalars.insert(s.mesh.scalars.end(), values, values + h.fields.size());
+  problem = s.applyNewSplit(vs, closed);
+  if (!problem.empty()) {
+    s.mesh.positions.pop_back();
+    s.mesh.scalars.resize(s.mesh.scalars.size() - h.fields.size());
+  }
+  return problem;
+}
+
+Error decodeChunks(DecodedTetMesh* out) {
+  const Container& c = out->container;
+  ProgressiveTetMesh::Impl& s = out->mesh.state();
+  s.header = out->header;
+  const PtHeader& h = s.header;
+  pt::PtContexts ctx;
+  bool seen_base = false;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    const uint64_t at = chunk.payloadOffset();
+    if (chunk.chunk_type == kChunkTetBase) {
+      // spec 7.4 base_mesh()
+      if (seen_base) return Error{Status::kChunkOrder, chunk.offset, "TBAS", "more than one TBAS chunk"};
+      seen_base = true;
+      RangeDecoder rc(chunk.payload, chunk.chunk_length);
+      if (!rc.validStart()) return Error{Status::kBadEntropyPayload, at, "TBAS", "coded data must start with a 0 byte"};
+      DecodingCoder coder{&rc};
+      std::string problem = pt::codeBaseMesh(coder, ctx, h, &s.mesh);
+      if (!problem.empty()) {
+        const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
+        return Error{status, at, "TBAS", problem};
+      }
+      if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "TBAS"); !e.ok()) return e;
+      problem = s.startFromBase();
+      if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "TBAS", "the base mesh: " + problem};
+      out->has_mesh = true;
+    } else if (chunk.chunk_type == kChunkTetSplits) {
+      // spec 7.7 batch(): split_count u32, then the coded flags and splits.
+      if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "TSPL", "TSPL before TBAS"};
+      if (out->batches_decoded == h.batch_count)
+        return Error{Status::kSplitCountMismatch, chunk.offset, "TSPL", "more TSPL chunks than batch_count"};
+      ByteReader r(chunk.payload, chunk.chunk_length);
+      const uint32_t split_count = r.u32();
+      if (r.overrun())
+        return Error{Status::kBadChunkLength, chunk.offset + 4, "TSPL.chunk_length",
+                     "TSPL payload shorter than its 4-byte split_count"};
+      const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
+      if (split_count == 0 || split_count > remaining)
+        return Error{Status::kSplitCountMismatch, at, "TSPL.split_count",
+                     "split_count " + std::to_string(split_count) + " must be 1 to the " + std::to_string(remaining) +
+                         " splits left"};
+      RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
+      if (!rc.validStart())
+        return Error{Status::kBadEntropyPayload, at + 4, "TSPL", "coded data must start with a 0 byte"};
+      DecodingCoder coder{&rc};
+      const uint32_t vertices = s.mesh.vertexCount();
+      uint32_t done = 0;
+      for (uint32_t v = 0; done < split_count; ++v) {
+        auto fail = [&](const std::string& problem) {
+          const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
+          return Error{status, at + 4, "TSPL.vertex_split",
+                       "batch " + std::to_string(out->batches_decoded) + ", split " + std::to_string(done) +
+                           " (vertex " + std::to_string(v) + "): " + problem};
+        };
+        if (v == vertices) return fail("the flags end before split_count splits");
+        if (!coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], 0)) continue;
+        if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
+        ++done;
+      }
+      if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "TSPL"); !e.ok()) return e;
+      ++out->batches_decoded;
+    } else if (chunk.chunk_type.critical()) {
+      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                   chunk.chunk_type.str() + " in a progressive tet mesh stream"};
+    }
+  }
+  if (c.complete) {
+    if (!seen_base)
+      return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PT stream needs TBAS before MEND"};
+    if (out->batches_decoded != h.batch_count || s.splits.size() != h.splitCount() ||
+        s.mesh.tets.size() != h.tet_count)
+      return Error{Status::kSplitCountMismatch, c.end_chunk_offset, "MEND",
+                   std::to_string(out->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
+                       " splits and " + std::to_string(s.mesh.tets.size()) + " tets, but THDR announces " +
+                       std::to_string(h.batch_count) + " with " + std::to_string(h.splitCount()) + " and " +
+                       std::to_string(h.tet_count)};
+  }
+  return {};
+}
+
+}  // namespace
+
+Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedTetMesh* out) {
+  *out = DecodedTetMesh{};
+  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
+  const Container& c = out->container;
+  if (c.chunks.empty()) return {};
+  if (c.chunks[0].chunk_type != kChunkTetHeader)
+    return Error{Status::kChunkOrder, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
+                 "not a progressive tet mesh stream (the first chunk is not THDR)"};
+  if (Error e = parsePtHeader(c.chunks[0], &out->header); !e.ok()) return e;
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkMeta)
+      if (Error e = parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out->metadata); !e.ok())
+        return e;
+  }
+  const uint64_t need = memoryNeeded(out->header);
+  if (need > options.max_output_bytes)
+    return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR",
+                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
+  try {
+    return decodeChunks(out);
+  } catch (const std::bad_alloc&) {
+    return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR", "out of memory"};
+  }
+}
+
+}  // namespace mrsv

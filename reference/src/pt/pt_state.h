@@ -1,0 +1,55 @@
+// The state of a decoded PT stream, shared by the decoder, the level
+// switching and the encoder (which runs the decoder's state to code each
+// split against exactly what a decoder will hold).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mrsv/progressive_tet_mesh.h"
+#include "tetmesh/tet_complex.h"
+#include "tetmesh/vertex_split.h"
+
+namespace mrsv {
+
+// What undoing and redoing split k needs: vt = base_vertex_count + k.
+struct PtSplitRecord {
+  uint32_t vs = 0;
+  uint32_t moved_begin = 0;  // into Impl::moved: the tet slots that went to vt
+  uint32_t moved_count = 0;
+  uint32_t cut_begin = 0;  // into Impl::cuts: the cut as vertex numbers
+  uint32_t cut_length = 0;
+  bool closed = false;
+};
+
+struct ProgressiveTetMesh::Impl {
+  PtHeader header;
+  // Positions and scalars of every decoded vertex; tets and incidence of the
+  // current level (vertices above it have no tets).
+  TetComplex mesh;
+  std::vector<PtSplitRecord> splits;
+  std::vector<uint32_t> moved;
+  std::vector<uint32_t> cuts;
+  std::vector<uint32_t> tet_count_after;  // tets after split k
+  uint32_t level = 0;
+
+  // Scratch reused by every split.
+  Link link;
+  SplitScratch scratch;
+  std::vector<uint32_t> walk_local;
+  std::vector<uint32_t> region;
+  std::vector<uint32_t> walk_global;
+
+  // Sets up the base mesh (mesh.positions, scalars, tets given): incidence
+  // and the manifold checks of spec 7.4. Returns "" or the problem.
+  std::string startFromBase();
+  // Applies a new split at the finest level: vt's position and values are
+  // appended to the mesh already; the cut is walk_local (of `link`, the link
+  // of vs). Returns "" or the rule broken; on failure vt is removed again.
+  std::string applyNewSplit(uint32_t vs, bool closed);
+  void redo(uint32_t k);
+  void undo(uint32_t k);
+};
+
+}  // namespace mrsv

@@ -1,0 +1,73 @@
+// The tetrahedral complex a PT decoder (and the encoder that mirrors it) holds:
+// integer positions and scalars, tets in slots, and each vertex's tets.
+// spec: 7.3 (the mesh a decoder holds), 7.6 (links, vertex splits, edge collapses).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tetmesh/exact_orient.h"
+
+namespace mrsv {
+
+using Tet = std::array<uint32_t, 4>;
+
+// The link of a vertex v: for each tet (v, p, q, r) with v moved to the front
+// by an even permutation, the oriented triangle (p, q, r). Local vertex i is
+// the i-th smallest vertex number of the link; its corners list the triangles
+// through it, rotated so that it comes first.
+struct Link {
+  uint32_t center = 0;
+  std::vector<uint32_t> vertices;                  // ascending vertex numbers
+  std::vector<std::array<uint32_t, 3>> triangles;  // local indices
+  std::vector<uint32_t> triangle_tet;              // the tet slot of each triangle
+  std::vector<uint32_t> corner_begin;              // CSR over local vertices
+  std::vector<std::array<uint32_t, 3>> corners;    // (q, r, triangle) for local vertex p's triangle (p, q, r)
+  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
+  bool has_boundary = false;
+
+  uint32_t degree(uint32_t p) const { return corner_begin[p + 1] - corner_begin[p]; }
+  // The triangle (p, q, ...) through p whose next corner is q, or -1.
+  int64_t triangleFrom(uint32_t p, uint32_t q) const;
+  // p's neighbours in rotation order (q -> r for each triangle (p, q, r))
+  // starting at `start`, or at the start of the fan when p is on the
+  // boundary. For an interior p that is the cycle of its deg neighbours;
+  // for a boundary p the path of its deg + 1 neighbours. False when the
+  // triangles around p do not form one fan (the link is not a manifold).
+  bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
+  uint32_t localIndex(uint32_t vertex) const;  // vertices.size() when absent
+
+  // Scratch of buildLink(): per vertex number, its local index while its
+  // stamp is the current one (no sort or search per corner).
+  std::vector<uint32_t> local_of, stamp_of;
+  uint32_t stamp = 0;
+};
+
+class TetComplex {
+ public:
+  int field_count = 0;
+  std::vector<Point3i> positions;
+  std::vector<int32_t> scalars;  // field_count per vertex
+  std::vector<Tet> tets;
+  std::vector<std::vector<uint32_t>> incident;  // the tet slots of each vertex
+
+  uint32_t vertexCount() const { return static_cast<uint32_t>(positions.size()); }
+  int orientation(const Tet& t) const {
+    return orient3d(positions[t[0]], positions[t[1]], positions[t[2]], positions[t[3]]);
+  }
+  // Builds `incident` from `tets` for the first `vertex_count` vertices.
+  void buildIncidence();
+  // The link of v (spec 7.6.1); reuses `link`'s storage.
+  void buildLink(uint32_t v, Link* link) const;
+  // Checks that every tet is positive with distinct corners and that every
+  // vertex's link is a sphere or a disk (spec 7.4). Returns "" or the problem.
+  std::string checkManifold() const;
+};
+
+// Whether a link is a triangulated sphere or disk: each directed edge once,
+// one fan per vertex, connected, Euler characteristic 2 (no boundary) or 1.
+std::string checkLinkIsSphereOrDisk(const Link& link);
+
+}  // namespace mrsv

@@ -1,0 +1,121 @@
+// spec: 7.6.3 the region of a cut, 7.6.4 applying a vertex split.
+#include "tetmesh/vertex_split.h"
+
+#include <algorithm>
+
+namespace mrsv {
+
+std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
+                        SplitScratch* s, std::vector<uint32_t>* region_tets) {
+  const uint32_t m = static_cast<uint32_t>(link.vertices.size());
+  const uint32_t k = static_cast<uint32_t>(walk.size());
+  s->walk_position.assign(m, 0);
+  for (uint32_t i = 0; i < k; ++i) s->walk_position[walk[i]] = i + 1;
+  // An edge of the cut: consecutive on the walk (or its last and first when closed).
+  auto onCut = [&](uint32_t a, uint32_t b) {
+    const uint32_t pa = s->walk_position[a], pb = s->walk_position[b];
+    if (pa == 0 || pb == 0) return false;
+    const uint32_t d = pa > pb ? pa - pb : pb - pa;
+    return d == 1 || (closed && d == k - 1);
+  };
+  s->triangle_side.assign(link.triangles.size(), 0);
+  s->queue.clear();
+  const uint32_t edges = cutEdgeCount(k, closed);
+  for (uint32_t i = 0; i < edges; ++i) {
+    const uint32_t a = walk[i], b = walk[(i + 1) % k];
+    // vt's side holds the directed edge b -> a, vs's side a -> b.
+    const int64_t vt_side = link.triangleFrom(b, a), vs_side = link.triangleFrom(a, b);
+    if (vt_side < 0 || vs_side < 0) return "the cut runs along the boundary of the link";
+    if (s->triangle_side[vs_side] == 1 || s->triangle_side[vt_side] == 2)
+      return "the cut does not separate the link";
+    s->triangle_side[vs_side] = 2;
+    if (s->triangle_side[vt_side] == 0) {
+      s->triangle_side[vt_side] = 1;
+      s->queue.push_back(static_cast<uint32_t>(vt_side));
+    }
+  }
+  for (size_t q = 0; q < s->queue.size(); ++q) {
+    const auto& tri = link.triangles[s->queue[q]];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t a = tri[j], b = tri[(j + 1) % 3];
+      if (onCut(a, b)) continue;
+      const int64_t g = link.triangleFrom(b, a);
+      if (g < 0) continue;
+      if (s->triangle_side[g] == 2) return "the cut does not separate the link";
+      if (s->triangle_side[g] == 0) {
+        s->triangle_side[g] = 1;
+        s->queue.push_back(static_cast<uint32_t>(g));
+      }
+    }
+  }
+  region_tets->clear();
+  for (uint32_t f : s->queue) region_tets->push_back(link.triangle_tet[f]);
+  return "";
+}
+
+namespace {
+
+Tet replaced(Tet t, uint32_t from, uint32_t to) {
+  for (uint32_t& v : t)
+    if (v == from) v = to;
+  return t;
+}
+
+}  // namespace
+
+std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
+                       bool closed, const uint32_t* moved, uint32_t moved_count, SplitScratch* scratch) {
+  const uint32_t edges = cutEdgeCount(walk_length, closed);
+  for (uint32_t i = 0; i < moved_count; ++i)
+    if (mesh->orientation(replaced(mesh->tets[moved[i]], vs, vt)) <= 0)
+      return "tet " + std::to_string(moved[i]) + " would not be positive with vt in place of vs";
+  for (uint32_t i = 0; i < edges; ++i) {
+    const Tet t{vt, walk[i], walk[(i + 1) % walk_length], vs};
+    if (mesh->orientation(t) <= 0)
+      return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
+  }
+  const uint32_t first_new = static_cast<uint32_t>(mesh->tets.size());
+  std::vector<uint32_t>& star_vs = mesh->incident[vs];
+  std::vector<uint32_t>& star_vt = mesh->incident[vt];
+  star_vt.assign(moved, moved + moved_count);
+  for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
+  // vs keeps the tets that did not move.
+  scratch->sorted.assign(moved, moved + moved_count);
+  std::sort(scratch->sorted.begin(), scratch->sorted.end());
+  star_vs.erase(std::remove_if(star_vs.begin(), star_vs.end(),
+                               [&](uint32_t t) {
+                                 return std::binary_search(scratch->sorted.begin(), scratch->sorted.end(), t);
+                               }),
+                star_vs.end());
+  for (uint32_t i = 0; i < edges; ++i) {
+    const uint32_t a = walk[i], b = walk[(i + 1) % walk_length];
+    const uint32_t slot = first_new + i;
+    mesh->tets.push_back(Tet{vt, a, b, vs});
+    star_vs.push_back(slot);
+    star_vt.push_back(slot);
+    mesh->incident[a].push_back(slot);
+    mesh->incident[b].push_back(slot);
+  }
+  return "";
+}
+
+void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
+               bool closed, const uint32_t* moved, uint32_t moved_count) {
+  const uint32_t edges = cutEdgeCount(walk_length, closed);
+  // The new tets are the last slots, and the last entries of their vertices'
+  // lists: every later split has been undone already.
+  for (uint32_t i = edges; i-- > 0;) {
+    mesh->incident[walk[(i + 1) % walk_length]].pop_back();
+    mesh->incident[walk[i]].pop_back();
+  }
+  std::vector<uint32_t>& star_vs = mesh->incident[vs];
+  star_vs.resize(star_vs.size() - edges);
+  mesh->tets.resize(mesh->tets.size() - edges);
+  for (uint32_t i = 0; i < moved_count; ++i) {
+    mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vt, vs);
+    star_vs.push_back(moved[i]);
+  }
+  mesh->incident[vt].clear();
+}
+
+}  // namespace mrsv

@@ -1,0 +1,47 @@
+// A vertex split of a tet complex and its inverse, the half-edge collapse.
+// spec: 7.6.2 (the cut), 7.6.3 (the region), 7.6.4 (applying a split).
+//
+// A split of vs is given by a cut: a walk c_0, c_1, ... along the edges of the
+// link of vs (a sphere when vs is interior, a disk when it is on the
+// boundary). For an interior vs the walk is a simple cycle; for a boundary vs
+// a simple path from the disk's boundary through its interior back to the
+// boundary. The link triangles on the cut's sweep side (7.6.3) are the
+// region: their tets move from vs to the new vertex vt, and each edge
+// (c_i, c_i+1) of the cut gains the tet (vt, c_i, c_i+1, vs).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tetmesh/tet_complex.h"
+
+namespace mrsv {
+
+struct SplitScratch {
+  std::vector<uint32_t> rotation;
+  std::vector<uint32_t> walk_position;  // per local vertex: 1 + index in the walk, 0 if not on it
+  std::vector<uint8_t> triangle_side;   // per link triangle: 0 unknown, 1 vt's, 2 vs's
+  std::vector<uint32_t> queue;
+  std::vector<uint32_t> sorted;
+};
+
+// spec 7.6.3: the tet slots of the link triangles on the sweep side of the
+// walk (local vertices; `closed` for a cycle). Returns "" or the rule broken.
+std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
+                        SplitScratch* scratch, std::vector<uint32_t>* region_tets);
+
+// spec 7.6.4: splits vs, whose new vertex vt already has its position and
+// scalars (vt = the complex's last vertex, with no tets yet). `walk` lists
+// vertex numbers. Checks every changed and new tet for orientation first and
+// changes nothing when one is not positive. Returns "" or the rule broken.
+std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
+                       bool closed, const uint32_t* moved, uint32_t moved_count, SplitScratch* scratch);
+
+// The exact inverse of the last applySplit still in effect.
+void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
+               bool closed, const uint32_t* moved, uint32_t moved_count);
+
+inline uint32_t cutEdgeCount(uint32_t walk_length, bool closed) { return closed ? walk_length : walk_length - 1; }
+
+}  // namespace mrsv
