@@ -8,12 +8,14 @@
 //                      [--samples N] [--repeat N] [--boundary-weight W]
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "mrsv/tet_formats.h"
 #include "tet_test_meshes.h"
 #include "tetsimplify/tet_simplify.h"
 
@@ -87,6 +89,35 @@ int main(int argc, char** argv) {
   bool ok = false;
   if (which == "ct") ok = test::paperCtCrop(&mesh, &error);
   else if (which == "lox") ok = test::loxPost(&mesh, &error);
+  else if (which == "lox-io" || which == "bluntfin-io" || which == "combustion-io") {
+    // The formats' PLOT3D generator (welded seams), quantised to 2^29 over
+    // the longest side, the x momentum as the scalar.
+    const std::string base = std::string(MRSV_SHARED_DATA) + "/tet/" +
+                             (which == "lox-io" ? "lox_post_plot3d_38x76x38_f32be" :
+                              which == "bluntfin-io" ? "bluntfin_plot3d_40x32x32_f32be" :
+                                                       "combustion_chamber_plot3d_57x33x25_f32be");
+    Plot3dData data;
+    TetMesh tets;
+    TetBuildReport report;
+    ok = readPlot3d(base + (which == "lox-io" ? "_iblank.xyz" : ".xyz"), base + ".q", &data, &error) &&
+         tetrahedralizePlot3d(data, &tets, &report, &error);
+    if (ok) {
+      std::array<double, 3> lo = tets.positions[0], hi = lo;
+      for (const auto& p : tets.positions) {
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
+      }
+      const double scale = double((1 << 29) - 1) / std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+      for (const auto& p : tets.positions) {
+        mesh.positions.push_back({int32_t(std::lround((p[0] - lo[0]) * scale)), int32_t(std::lround((p[1] - lo[1]) * scale)),
+                                  int32_t(std::lround((p[2] - lo[2]) * scale))});
+      }
+      mesh.tets = tets.tets;
+      mesh.fields.push_back(tets.fields.size() > 1 ? tets.fields[1].values : std::vector<double>(tets.positions.size(), 0.0));
+    }
+  }
   else if (which == "bunny") ok = test::readMeditTets(std::string(MRSV_SHARED_DATA) + "/tet/bunny_5433v_34055tet.mesh", &mesh, &error);
   else if (which == "hand") ok = test::readMeditTets(std::string(MRSV_SHARED_DATA) + "/tet/hand_7234v_29998tet.mesh", &mesh, &error);
   if (!ok) {
