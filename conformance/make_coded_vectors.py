@@ -27,7 +27,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from make_vectors import CODED_PREFIX, canonical, chunk, file_header, write_manifest  # noqa: E402
+from make_vectors import CODED_PREFIX, canonical, chunk, file_header, with_rules, write_manifest  # noqa: E402
 from mesh_vectors import build_mesh  # noqa: E402
 
 CROPS = os.path.join(HERE, "..", "demo", "data")
@@ -89,22 +89,29 @@ class Generator:
         subprocess.run([self.mrsv, "encode", "--quiet"] + options + [path, out], check=True)
         return open(out, "rb").read()
 
-    def reference_output(self, data):
+    def reference_output(self, data, options=()):
         src = os.path.join(self.tmp, "v.mrsv")
         out = os.path.join(self.tmp, "v.canonical")
         with open(src, "wb") as f:
             f.write(data)
-        subprocess.run([self.mrsv, "decode", "--quiet", "--canonical", src, out], check=True)
+        subprocess.run([self.mrsv, "decode", "--quiet", "--canonical", *options, src, out], check=True)
         return open(out, "rb").read()
 
-    def valid(self, name, data, clause, description, expected=None):
+    def valid(self, name, data, clause, description, expected=None, levels=()):
+        """`levels`: vertex counts of mesh levels whose outputs the manifest lists (spec 6.8)."""
         path = f"{CODED_PREFIX}valid/{name}.mrsv"
         self.files[path] = data
         by = "construction" if expected is not None else "reference decoder"
         output = expected if expected is not None else self.reference_output(data)
-        self.entries.append({"file": path, "valid": True, "sha256": hashlib.sha256(output).hexdigest(),
-                             "output_bytes": len(output), "expected_by": by, "clause": clause,
-                             "description": description})
+        entry = {"file": path, "valid": True, "sha256": hashlib.sha256(output).hexdigest(),
+                 "output_bytes": len(output), "expected_by": by, "clause": clause, "description": description}
+        if levels:
+            entry["levels"] = []
+            for n in levels:
+                out = self.reference_output(data, ["--vertices", str(n)])
+                entry["levels"].append({"vertices": n, "sha256": hashlib.sha256(out).hexdigest(),
+                                        "output_bytes": len(out)})
+        self.entries.append(entry)
 
     def invalid(self, name, chunks, error, error_name, offset, clause, description):
         path = f"{CODED_PREFIX}invalid/{name}.mrsv"
@@ -397,7 +404,7 @@ def main():
     with open(manifest, encoding="utf-8") as f:
         kept = [e for e in json.load(f)["vectors"] if not e["file"].startswith(CODED_PREFIX)]
     with open(manifest, "wb") as f:
-        f.write(write_manifest(kept + g.entries))
+        f.write(write_manifest(kept + [with_rules(e, g.files[e["file"]]) for e in g.entries]))
     print(f"make_coded_vectors: wrote {len(g.entries)} coded vectors")
     return 0
 

@@ -19,6 +19,10 @@ import struct
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from hand_vectors import build_hand  # noqa: E402
+from vector_rules import rules_of  # noqa: E402
+
 CROPS = os.path.join(HERE, "..", "demo", "data")
 
 # spec 2.2
@@ -122,12 +126,16 @@ class Vectors:
         self.files = {}     # relative path -> bytes
         self.entries = []   # manifest entries
 
-    def valid(self, name, data, output, clause, description):
+    def valid(self, name, data, output, clause, description, levels=None):
+        """`levels`: [(vertex count, canonical output)] of a mesh's levels (spec 6.8)."""
         path = f"vectors/valid/{name}.mrsv"
         self.files[path] = data
-        self.entries.append({"file": path, "valid": True, "sha256": hashlib.sha256(output).hexdigest(),
-                             "output_bytes": len(output), "clause": clause,
-                             "description": description})
+        entry = {"file": path, "valid": True, "sha256": hashlib.sha256(output).hexdigest(),
+                 "output_bytes": len(output), "clause": clause, "description": description}
+        if levels:
+            entry["levels"] = [{"vertices": n, "sha256": hashlib.sha256(out).hexdigest(), "output_bytes": len(out)}
+                               for n, out in levels]
+        self.entries.append(entry)
 
     def invalid(self, name, data, error, error_name, offset, clause, description):
         path = f"vectors/invalid/{name}.mrsv"
@@ -321,6 +329,7 @@ def build():
     meta_case("meta_unterminated", b"units=m", 0, "the last entry has no LF")
     meta_case("meta_bad_key", b"Units=m\n", 0, "a key with an upper-case letter")
     meta_case("meta_bad_spacing", b"spacing=30;30\n", 0, "spacing that is not a list of numbers")
+    build_hand(v, H, chunk, ghdr, meta, canonical, MEND)
     return v
 
 
@@ -336,11 +345,26 @@ def coded_entries():
         return [e for e in json.load(f)["vectors"] if e["file"].startswith(CODED_PREFIX)]
 
 
+def profile_of(data):
+    """spec 1.6: the profile named by the content header; "any" without one."""
+    return {b"GHDR": "grid", b"PHDR": "mesh", b"THDR": "tet"}.get(data[12:16], "any")
+
+
+def with_rules(entry, data):
+    """The entry with its profile and the rule tags of vector_rules.py (spec README)."""
+    name = os.path.splitext(os.path.basename(entry["file"]))[0]
+    out = dict(entry)
+    out["profile"] = profile_of(data)
+    out["rules"] = rules_of(name, entry["valid"])
+    return out
+
+
 def write_manifest(entries):
     lines = ["{",
              '  "format": "MRSV",',
              '  "version": "%d.%d",' % VERSION,
-             '  "output_hash": "sha256 of the canonical output (spec 3.4)",',
+             '  "output_hash": "sha256 of the canonical output: spec 3.4 for grids, 6.8 for meshes (levels: '
+             'each level of a mesh, by its vertex count)",',
              '  "vectors": [']
     for i, e in enumerate(entries):
         lines.append("    " + json.dumps(e, ensure_ascii=False) + ("," if i + 1 < len(entries) else ""))
@@ -356,7 +380,9 @@ def main():
     v = build()
     outputs = dict(v.files)
     # The coded vectors (make_coded_vectors.py) share the manifest: keep them.
-    outputs["manifest.json"] = write_manifest(v.entries + coded_entries())
+    entries = [with_rules(e, v.files[e["file"]]) for e in v.entries] + \
+        [with_rules(e, open(os.path.join(HERE, e["file"]), "rb").read()) for e in coded_entries()]
+    outputs["manifest.json"] = write_manifest(entries)
     names = [e["file"] for e in v.entries]
     assert len(names) == len(set(names)), "duplicate vector names"
     if args.check:

@@ -81,6 +81,13 @@ def split_vertex_zero(base_rings):
     return ("flags", [(min(base_rings[0][0], 15), 1)])
 
 
+def levels_of(stream):
+    """Vertex counts of three levels of a PM stream (spec 6.8): the base mesh, about half
+    of the splits, and the whole stream (from PHDR's vertex_count and base_vertex_count)."""
+    vertices, base = struct.unpack_from("<II", stream, 12 + 8 + 4)
+    return (base, base + (vertices - base) // 2, vertices)
+
+
 def build_mesh(g, parse_chunks, frame, offset_of, find):
     cow = os.path.join(SHARED, "cow_viewpoint_2903v_5804tri.obj")
     terrain_obj = os.path.join(g.tmp, "terrain.obj")
@@ -102,22 +109,29 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
         if len(splits) >= 2:
             half = splits[len(splits) // 2]
             g.valid(f"{name}_prefix_half", frame(chunks[:half + 1]), clause,
-                    f"{what}: prefix of {len(splits) // 2 + 1} of {len(splits)} batches")
+                    f"{what}: prefix of {len(splits) // 2 + 1} of {len(splits)} batches",
+                    levels=levels_of(data)[:1])
 
     cow_stream = encode(cow, ["--bits", "14", "--placement", "endpoint"])
-    g.valid("mesh_cow", cow_stream, "6", "the Viewpoint cow (closed), 14-bit positions, quadric cost, vs stays")
+    g.valid("mesh_cow", cow_stream, "6", "the Viewpoint cow (closed), 14-bit positions, quadric cost, vs stays",
+            levels=levels_of(cow_stream))
     prefixes("mesh_cow", cow_stream, "6.1, 6.7", "the cow")
-    g.valid("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1"]), "6.7.3",
-            "the cow with free placement: every split also moves vs, along its plane on the grid of move_detail 4")
-    g.valid("mesh_cow_free_exact", encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1", "--move-detail", "0"]),
-            "6.7.3", "the cow with free placement and move_detail 0: every move to the quantisation step")
-    g.valid("mesh_cow_paper", encode(cow, ["--bits", "10", "--cost", "paper", "--placement", "endpoint"]), "6",
-            "the cow simplified with the paper's energies (50, 1, 5), 10-bit positions")
+    def valid_levels(name, stream, clause, description):
+        g.valid(name, stream, clause, description, levels=levels_of(stream))
+
+    valid_levels("mesh_cow_free", encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1"]), "6.7.3",
+                 "the cow with free placement: every split also moves vs, along its plane on the grid of move_detail 4")
+    valid_levels("mesh_cow_free_exact",
+                 encode(cow, ["--bits", "12", "--placement", "free", "--free-from", "1", "--move-detail", "0"]),
+                 "6.7.3", "the cow with free placement and move_detail 0: every move to the quantisation step")
+    valid_levels("mesh_cow_paper", encode(cow, ["--bits", "10", "--cost", "paper", "--placement", "endpoint"]), "6",
+                 "the cow simplified with the paper's energies (50, 1, 5), 10-bit positions")
     terrain = encode(terrain_obj, ["--bits", "16"])
-    g.valid("mesh_terrain", terrain, "6.6.2, 6.7.2", "a terrain window as a mesh: boundary splits of every kind")
+    g.valid("mesh_terrain", terrain, "6.6.2, 6.7.2", "a terrain window as a mesh: boundary splits of every kind",
+            levels=levels_of(terrain))
     prefixes("mesh_terrain", terrain, "6.1, 6.7", "the terrain mesh")
-    g.valid("mesh_terrain_scalar", encode(terrain_ply, ["--bits", "16", "--scalar", "height", "--scalar-bits", "12"]),
-            "6.4, 6.7.3", "a terrain window with its heights as the per-vertex scalar")
+    valid_levels("mesh_terrain_scalar", encode(terrain_ply, ["--bits", "16", "--scalar", "height", "--scalar-bits", "12"]),
+                 "6.4, 6.7.3", "a terrain window with its heights as the per-vertex scalar")
 
     # Invalid: header fields (6.2).
     chunks = parse_chunks(cow_stream)
@@ -150,7 +164,7 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
     g.invalid("mesh_step_zero", with_header(lambda p: put(p, 48, "<d", 0.0)), 301, "bad_mesh_header",
               hdr_at + 48, "6.2", "position_step 0")
     g.invalid("mesh_scalar_fields_without_scalar", with_header(lambda p: put(p, 64, "<d", 1.0)), 301,
-              "bad_mesh_header", hdr_at + 56, "6.2", "scalar_step set although scalar_bits is 0")
+              "bad_mesh_header", hdr_at + 64, "6.2", "scalar_step set although scalar_bits is 0")
     g.invalid("mesh_header_length", [("PHDR", chunks[0][1] + b"\0")] + chunks[1:], 117, "bad_chunk_length",
               offset_of(chunks, 0) + 4, "6.2", "a 73-byte PHDR")
 
@@ -229,5 +243,5 @@ def build_mesh(g, parse_chunks, frame, offset_of, find):
 
     c = list(chunks)
     c[base] = ("PBAS", b"\x01" + chunks[base][1][1:])
-    g.invalid("mesh_base_first_byte", c, 206, "bad_entropy_payload", offset_of(c, base) + 8, "5.6, 6.4",
+    g.invalid("mesh_base_first_byte", c, 206, "bad_entropy_payload", offset_of(c, base) + 8, "6.4",
               "coded base mesh that does not start with a 0 byte")

@@ -11,9 +11,18 @@ The decoder is given as a command template with {in} and {out}:
     must exit non-zero and print its E<number>; with --check-offsets the line
     must also say "offset <n>" with the manifest's offset.
 
+  --level-decoder (decode mode): a second template with {in}, {out} and
+    {vertices} that writes the canonical output of a mesh's level with that
+    many vertices (spec 6.8); every level a vector's manifest entry lists
+    ("levels") must then hash as listed.
+  --profile P (repeatable): only the vectors of profiles P and "any" (spec 1.6),
+    for a decoder that implements some profiles only.
+
 Examples:
   run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}"
   run_conformance.py --mode check --check-offsets --decoder "build/mrsv check {in}"
+  run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}" \
+      --level-decoder "build/mrsv decode --canonical --vertices {vertices} {in} {out}"
 """
 import argparse
 import hashlib
@@ -26,6 +35,22 @@ import sys
 import tempfile
 
 
+def check_levels(args, vector, path, out):
+    """spec 6.8: each listed level of a mesh decodes to the listed canonical output."""
+    for level in vector.get("levels", []):
+        if os.path.exists(out):
+            os.remove(out)
+        cmd = [part.replace("{in}", path).replace("{out}", out).replace("{vertices}", str(level["vertices"]))
+               for part in shlex.split(args.level_decoder)]
+        run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
+        if run.returncode != 0 or not os.path.exists(out):
+            return f"level of {level['vertices']} vertices: exit {run.returncode}"
+        digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
+        if digest != level["sha256"]:
+            return f"level of {level['vertices']} vertices: sha256 {digest}, expected {level['sha256']}"
+    return None
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--manifest", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "manifest.json"))
@@ -33,6 +58,9 @@ def main():
     parser.add_argument("--mode", choices=("decode", "check"), default="decode")
     parser.add_argument("--check-offsets", action="store_true", help="also require 'offset <n>' in error output")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds allowed per vector")
+    parser.add_argument("--level-decoder", help="command template with {in}, {out} and {vertices}")
+    parser.add_argument("--profile", action="append", choices=("grid", "mesh", "tet"),
+                        help="run only this profile's vectors (and those of no profile)")
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
 
@@ -42,6 +70,8 @@ def main():
     passed, failures = 0, []
     with tempfile.TemporaryDirectory(prefix="mrsv-conformance-") as tmp:
         for vector in manifest["vectors"]:
+            if args.profile and vector.get("profile", "any") not in args.profile + ["any"]:
+                continue
             path = os.path.join(base, vector["file"])
             out = os.path.join(tmp, "out.bin")
             if os.path.exists(out):
@@ -66,6 +96,8 @@ def main():
                         digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
                         if digest != vector["sha256"]:
                             problem = f"output sha256 {digest}, expected {vector['sha256']}"
+                        elif args.level_decoder:
+                            problem = check_levels(args, vector, path, out)
             else:
                 code = "E%d" % vector["error"]
                 if run.returncode == 0:

@@ -43,6 +43,31 @@ TEST(ConformanceVectors, EachDecodesOrFailsAsTheManifestSays) {
   }
 }
 
+// spec 1.6: decodeGrid implements the grid profile and decodeProgressiveMesh the mesh
+// profile; each reports 904 at the content header for a valid stream of the other.
+TEST(ConformanceVectors, ADecoderOfOneProfileReports904ForTheOther) {
+  int grids = 0, meshes = 0;
+  for (const auto& v : manifestVectors()) {
+    if (!v.valid) continue;
+    std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
+    if (bytes.size() < kFileHeaderSize + 12) continue;  // no content header: every profile's
+    Error e;
+    if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
+      DecodedGrid grid;
+      e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
+      ++meshes;
+    } else {
+      DecodedMesh mesh;
+      e = decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &mesh);
+      ++grids;
+    }
+    EXPECT_EQ(e.status, Status::kUnsupportedProfile) << v.file << ": " << e.describe();
+    EXPECT_EQ(e.offset, 12u) << v.file;
+  }
+  EXPECT_GT(grids, 0);
+  EXPECT_GT(meshes, 0);
+}
+
 TEST(ConformanceVectors, EveryPrefixOfAValidVectorIsHandled) {
   for (const auto& v : manifestVectors()) {
     if (!v.valid) continue;

@@ -216,8 +216,14 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
   if (Error e = decodeProgressiveMesh(bytes.data(), bytes.size(), options, &decoded); !e.ok())
     return reportError(cmd, in, e);
   auto done = std::chrono::steady_clock::now();
-  if (!decoded.has_mesh)
-    return fail(cmd, in + ": the stream ends before its base mesh (PBAS)", kExitInvalidData);
+  if (!decoded.has_mesh) {
+    // spec 6.8: a prefix without PBAS has the canonical output of an empty level.
+    if (!args.flag("canonical"))
+      return fail(cmd, in + ": the stream ends before its base mesh (PBAS)", kExitInvalidData);
+    if (!writeFileAtomically(out, canonicalMeshOutput(decoded.mesh), &error))
+      return fail(cmd, out + ": " + error, kExitIo);
+    return kExitOk;
+  }
   ProgressiveMesh& pm = decoded.mesh;
   const uint32_t finest = pm.splitsDecoded();
   uint32_t level = finest;

@@ -52,6 +52,7 @@ enum class Status : int {
   kResourceLimit = 901,
   kIoError = 902,
   kInvalidArgument = 903,
+  kUnsupportedProfile = 904,  // a valid stream of a profile (spec 1.6) the decoder does not implement
 };
 
 // Stable lower_snake_case name of a status, e.g. "chunk_past_end".

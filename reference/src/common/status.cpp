@@ -34,6 +34,7 @@ const char* statusName(Status status) {
     case Status::kResourceLimit: return "resource_limit";
     case Status::kIoError: return "io_error";
     case Status::kInvalidArgument: return "invalid_argument";
+    case Status::kUnsupportedProfile: return "unsupported_profile";
   }
   return "unknown_status";
 }

@@ -14,7 +14,11 @@ Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
   const Container& c = out->container;
   if (c.chunks.empty()) return {};  // a prefix that ends before the content header
 
-  // readContainer guarantees the first chunk is the content header.
+  // readContainer guarantees the first chunk is a content header; a grid
+  // decoder reads the grid profile only (spec 1.6).
+  if (c.chunks[0].chunk_type != kChunkGridHeader)
+    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
+                 "not a grid stream (the content header is not GHDR; spec 1.6)"};
   if (Error e = parseGridHeader(c.chunks[0], &out->header); !e.ok()) return e;
   const GridHeader& h = out->header;
   const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);

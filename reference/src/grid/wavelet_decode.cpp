@@ -595,6 +595,8 @@ Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out) {
       if (Error e = readResidual(chunk, options, &s); !e.ok()) return e;
       s.seen_residual = true;
       out->residual_decoded = true;
+    } else {
+      return orderError(chunk, t.str() + " in a wavelet-coded grid");
     }
   }
   if (c.complete) {

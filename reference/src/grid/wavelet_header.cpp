@@ -48,10 +48,15 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
   if (h.frac_bits > 24) return fail(Status::kBadWaveletHeader, 5, "frac_bits", "frac_bits above 24");
   if (h.wavelet_flags & ~(kWaveletFlagHasMask | kWaveletFlagHasResidual))
     return fail(Status::kReservedNonZero, 6, "wavelet_flags", "reserved bits must be 0");
-  if (reserved != 0) return fail(Status::kReservedNonZero, 7, "reserved", "must be 0");
+  // spec 5.2 checks 6 to 8: every rule on wavelet_flags, at its offset.
   if (h.hasMask() && !grid.hasNodata())
     return fail(Status::kBadWaveletHeader, 6, "wavelet_flags", "has_mask without a no-data value in GHDR");
-  if (isFloatType(grid.sample_type)) {
+  const bool float_samples = isFloatType(grid.sample_type);
+  if (float_samples && h.hasResidual())
+    return fail(Status::kBadWaveletHeader, 6, "wavelet_flags",
+                "has_residual is only defined for integer samples");
+  if (reserved != 0) return fail(Status::kReservedNonZero, 7, "reserved", "must be 0");
+  if (float_samples) {
     double offset, scale;
     std::memcpy(&offset, &h.value_offset, 8);
     std::memcpy(&scale, &h.value_scale, 8);
@@ -59,9 +64,6 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
       return fail(Status::kBadWaveletHeader, 8, "value_offset", "must be finite");
     if (!std::isfinite(scale) || !(scale > 0))
       return fail(Status::kBadWaveletHeader, 16, "value_scale", "must be finite and positive");
-    if (h.hasResidual())
-      return fail(Status::kBadWaveletHeader, 6, "wavelet_flags",
-                  "has_residual is only defined for integer samples");
   } else {
     int64_t offset = static_cast<int64_t>(h.value_offset);
     if (offset > kMaxValueOffset || offset < -kMaxValueOffset)
@@ -69,12 +71,19 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
     if (h.value_scale != 0)
       return fail(Status::kBadWaveletHeader, 16, "value_scale", "must be 0 for integer samples");
   }
+  // spec 5.2 check 11: each used axis has a plan (4.3, 4.11.1), reported at its levels byte.
   const uint32_t samples[3] = {grid.size_x, grid.size_y, grid.size_z};
+  for (int a = 0; a < grid.num_dims; ++a) {
+    wavelet::AxisPlan axis;
+    if (!wavelet::makeAxisPlan(samples[a], h.order, h.levels[a], &axis))
+      return fail(Status::kBadWaveletHeader, 1 + a, "levels",
+                  "no decomposition of axis " + std::string(1, "xyz"[a]) + " with these levels (spec 4.3)");
+  }
   const int levels[3] = {h.levels[0], h.levels[1], h.levels[2]};
   wavelet::GridPlan plan;
   if (!wavelet::makeGridPlan(grid.num_dims, samples, h.order, levels, &plan))
-    return fail(Status::kBadWaveletHeader, 1, "levels",
-                "no decomposition of this grid with these levels (spec 4.3)");
+    return fail(Status::kBadWaveletHeader, 1, "levels", "no decomposition of this grid (spec 4.3)");
+  // spec 5.2 check 12: the padded array, reported at the first levels byte.
   if (plan.paddedCount() > kMaxGridSamples)
     return fail(Status::kBadWaveletHeader, 1, "levels", "padded grid above 2^32 samples");
   *out = h;

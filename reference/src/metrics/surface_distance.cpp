@@ -1,5 +1,4 @@
-// Closest-point distances with a CGAL AABB tree; the only translation unit of
-// the project that includes CGAL's geometry headers (they are slow to compile).
+// Closest-point distances with a CGAL AABB tree.
 #include "metrics/surface_distance.h"
 
 #include <CGAL/AABB_traits.h>
@@ -12,6 +11,8 @@
 #include <cmath>
 #include <mutex>
 #include <thread>
+
+#include "metrics/compensated_sum.h"
 
 namespace mrsv {
 namespace {
@@ -32,18 +33,6 @@ CgalPoint toCgal(const Point3& p) { return CgalPoint(p[0], p[1], p[2]); }
 // the previous answer) is rarely broken.
 constexpr size_t kChunk = 8192;
 
-// Neumaier's compensated sum: a million squared distances of similar size
-// would otherwise lose about six digits of the plain sum.
-struct CompensatedSum {
-  double sum = 0.0, carry = 0.0;
-  void add(double x) {
-    double t = sum + x;
-    carry += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + carry; }
-};
-
 struct ChunkResult {
   double max = -1.0;
   Point3 max_at{};
@@ -59,6 +48,7 @@ unsigned threadCount(unsigned requested, size_t chunks) {
 
 struct SurfaceDistanceTree::Impl {
   std::vector<CgalTriangle> triangles;  // the tree's primitives point into this
+  std::vector<uint32_t> source;         // per entry of `triangles`: its index in the mesh
   Tree tree;
 
   // Runs `work(chunk)` for chunks 0..count-1 on `threads` threads (the caller
@@ -98,8 +88,10 @@ SurfaceDistanceTree::SurfaceDistanceTree(const TriangleMesh& mesh) : impl_(new I
     const Point3& a = mesh.positions[t[0]];
     const Point3& b = mesh.positions[t[1]];
     const Point3& c = mesh.positions[t[2]];
-    if (!isDegenerateTriangle(a, b, c))
+    if (!isDegenerateTriangle(a, b, c)) {
       impl_->triangles.emplace_back(toCgal(a), toCgal(b), toCgal(c));
+      impl_->source.push_back(static_cast<uint32_t>(&t - mesh.triangles.data()));
+    }
   }
   impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
   impl_->tree.build();
@@ -116,6 +108,12 @@ size_t SurfaceDistanceTree::triangleCount() const { return impl_->triangles.size
 
 double SurfaceDistanceTree::distance(const Point3& p) const {
   return std::sqrt(impl_->tree.squared_distance(toCgal(p)));
+}
+
+Point3 SurfaceDistanceTree::closestPoint(const Point3& p, uint32_t* triangle) const {
+  const auto hit = impl_->tree.closest_point_and_primitive(toCgal(p));
+  *triangle = impl_->source[static_cast<size_t>(hit.second - impl_->triangles.cbegin())];
+  return {hit.first.x(), hit.first.y(), hit.first.z()};
 }
 
 std::vector<double> SurfaceDistanceTree::distances(const std::vector<Point3>& points,

@@ -112,6 +112,9 @@ class SurfaceDistanceTree {
   size_t triangleCount() const;
   // Euclidean distance from `p` to the closest point of the surface.
   double distance(const Point3& p) const;
+  // The closest point of the surface to `p`, and in `triangle` the index (in
+  // the mesh the tree was built from) of a triangle it lies on.
+  Point3 closestPoint(const Point3& p, uint32_t* triangle) const;
   // Distances from every sample. Mean and RMS use the face samples (they are
   // area-proportional, so their average estimates the surface integral); when
   // there are none, all samples.

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "metrics/splitmix64.h"
 #include "metrics/surface_distance.h"
 
 namespace mrsv {
@@ -16,28 +17,6 @@ Point3 cross(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double length(const Point3& a) { return std::sqrt(dot(a, a)); }
-
-// splitmix64: a tiny generator with good output from any seed, so that every
-// face and edge can have its own stream (the samples of one element do not
-// depend on how many numbers the elements before it used).
-struct SplitMix64 {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  // Uniform in [0, 1) with 53 random bits.
-  double unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
-
-SplitMix64 streamFor(uint64_t seed, uint64_t kind, uint64_t index) {
-  SplitMix64 mix{seed};
-  mix.state ^= mix.next() + kind * 0x632be59bd9b4e019ULL + index * 0xd1b54a32d192ed03ULL;
-  mix.next();
-  return mix;
-}
 
 // Faces and edges (by owning face and corner) of the non-degenerate triangles.
 struct SurfaceTopology {
@@ -262,7 +241,7 @@ void sampleSurface(const TriangleMesh& mesh, const SurfaceSamplingOptions& optio
       const Point3 pq = sub(q, p);
       const uint64_t k = diffuser.next(length(pq) * s);
       if (k == 0) continue;
-      SplitMix64 rng = streamFor(options.seed, 1 + e, f);
+      SplitMix64 rng = splitMixStream(options.seed, 1 + e, f);
       for (uint64_t j = 0; j < k; ++j) {
         double t = (static_cast<double>(j) + rng.unit()) / static_cast<double>(k);
         samples->points.push_back({p[0] + t * pq[0], p[1] + t * pq[1], p[2] + t * pq[2]});
@@ -272,7 +251,7 @@ void sampleSurface(const TriangleMesh& mesh, const SurfaceSamplingOptions& optio
     }
     const uint64_t k = diffuser.next(topo.face_area[i] * s * s);
     if (k == 0) continue;
-    SplitMix64 rng = streamFor(options.seed, 0, f);
+    SplitMix64 rng = splitMixStream(options.seed, 0, f);
     sampleFace(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], k, &rng,
                samples);
   }

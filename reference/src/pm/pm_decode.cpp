@@ -139,8 +139,8 @@ Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOption
   const Container& c = out->container;
   if (c.chunks.empty()) return {};
   if (c.chunks[0].chunk_type != kChunkMeshHeader)
-    return Error{Status::kChunkOrder, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
-                 "not a progressive mesh stream (the first chunk is not PHDR)"};
+    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
+                 "not a progressive mesh stream (the content header is not PHDR; spec 1.6)"};
   if (Error e = parsePmHeader(c.chunks[0], &out->header); !e.ok()) return e;
   for (size_t i = 1; i < c.chunks.size(); ++i) {
     const ChunkView& chunk = c.chunks[i];

@@ -64,10 +64,12 @@ Error parsePmHeader(const ChunkView& chunk, PmHeader* out) {
       return fail(Status::kBadMeshHeader, 56, "scalar_origin", "must be finite");
     if (!std::isfinite(h.scalar_step) || !(h.scalar_step > 0))
       return fail(Status::kBadMeshHeader, 64, "scalar_step", "must be finite and positive");
-  } else if (h.scalar_origin != 0 || h.scalar_step != 0 || std::signbit(h.scalar_origin) ||
-             std::signbit(h.scalar_step)) {
-    return fail(Status::kBadMeshHeader, 56, "scalar_origin",
-                "scalar_origin and scalar_step must be +0 without scalars");
+  } else {
+    // Without scalars each field must be +0 (its bits all zero), checked at its own offset.
+    if (h.scalar_origin != 0 || std::signbit(h.scalar_origin))
+      return fail(Status::kBadMeshHeader, 56, "scalar_origin", "must be +0 without scalars");
+    if (h.scalar_step != 0 || std::signbit(h.scalar_step))
+      return fail(Status::kBadMeshHeader, 64, "scalar_step", "must be +0 without scalars");
   }
   *out = h;
   return {};

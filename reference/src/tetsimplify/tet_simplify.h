@@ -33,7 +33,7 @@ struct TetCollapse {
 };
 
 enum class TetCost {
-  kQuadric,  // volume-weighted quadric of the linear scalar field plus boundary planes (D38)
+  kQuadric,  // volume-weighted quadric of the linear scalar field plus boundary planes (D44)
   kPaper,    // Staadt-Gross 6.1: scalar difference, volume, equilateral, edge length, boundary normals
 };
 
