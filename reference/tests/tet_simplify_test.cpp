@@ -462,6 +462,18 @@ TEST(TetSimplify, RejectsBrokenInput) {
   mesh.tets.push_back({1, 2, 3, 4});
   e = simplifyTets(mesh, TetSimplifyOptions{}, &result);
   EXPECT_EQ(e.status, Status::kInvalidArgument);
+  // Two tets touching at one vertex: its link is two triangles.
+  mesh.positions = {{100, 100, 100}, {200, 100, 100}, {100, 200, 100}, {100, 100, 200},
+                    {0, 100, 100},   {100, 0, 100},   {100, 100, 0}};
+  mesh.tets = {{0, 1, 2, 3}, {0, 4, 5, 6}};
+  for (auto& t : mesh.tets) {
+    if (orient3d(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]) < 0) {
+      std::swap(t[1], t[2]);
+    }
+  }
+  e = simplifyTets(mesh, TetSimplifyOptions{}, &result);
+  EXPECT_EQ(e.status, Status::kInvalidArgument);
+  EXPECT_NE(e.message.find("vertex 0"), std::string::npos) << e.message;
 }
 
 // ------------------------------------------------------------ real meshes --

@@ -559,7 +559,7 @@ void TetSimplifier::run(TetSimplifyResult* out) {
     // now wait at their true, higher cost.
     if (!batch.empty()) out->batches.push_back(batch);
   }
-  report();
+  if (options_.progress) options_.progress(1.0);
   stats_.batches = out->batches.size();
   stats_.final_tets = complex_.liveTets();
   stats_.final_vertices = complex_.liveVertices();
