@@ -90,7 +90,7 @@ bool readMeditTets(const std::string& path, QuantizedTetMesh* mesh, std::string*
   return orient(mesh, error);
 }
 
-bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error) {
+bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error, int z_scale) {
   const std::string path = std::string(MRSV_SHARED_DATA) + "/volume/ct_head_stanford_cthead_256x256x99_uint8.raw.zst";
   std::vector<uint8_t> packed;
   if (!readFile(path, &packed)) {
@@ -111,7 +111,7 @@ bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::stri
   for (int z = 0; z < n; ++z) {
     for (int y = 0; y < n; ++y) {
       for (int x = 0; x < n; ++x) {
-        mesh->positions.push_back({x * 1024, y * 1024, z * 1024});
+        mesh->positions.push_back({x * 1024, y * 1024, z * 1024 * z_scale});
         mesh->fields[0].push_back(volume[(size_t(z + z0) * sy + (y + y0)) * sx + (x + x0)]);
       }
     }

@@ -22,8 +22,9 @@ bool readMeditTets(const std::string& path, QuantizedTetMesh* mesh, std::string*
 
 // The n^3-sample crop of the CT head starting at sample (x0, y0, z0), as 6
 // tets per cube around each cube's main diagonal (conforming faces), sample
-// values as the scalar field. Positions are sample indices times 1024.
-bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error);
+// values as the scalar field. Positions are sample indices times 1024
+// (times 1024 z_scale along z: the volume's slices are 2 pixels apart).
+bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error, int z_scale = 1);
 // The paper's crop (7.2): 32^3 samples, 178,746 tets.
 bool paperCtCrop(QuantizedTetMesh* mesh, std::string* error);
 

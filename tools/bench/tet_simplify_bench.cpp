@@ -1,9 +1,9 @@
 // Tet simplifier benchmark (issue 21): build time, collapses per second,
-// batch sizes, evasions per test, and per level (50, 20, 10, 5 % of the tets)
+// batch sizes, evasions per test, and per level (50, 20, 10, 5, 2, 1 % of the tets)
 // the scalar PSNR at random points (the paper's 7.2 measure) and the worst and
 // mean minimum dihedral angles.
 //
-//   tet_simplify_bench [--mesh ct|lox|bunny|hand] [--cost quadric|paper]
+//   tet_simplify_bench [--mesh ct|ct-peer|lox|lox-io|bluntfin-io|bunny|hand] [--cost quadric|paper]
 //                      [--no-intersection] [--min-dihedral D] [--levels]
 //                      [--samples N] [--repeat N] [--boundary-weight W]
 #include <algorithm>
@@ -90,6 +90,8 @@ int main(int argc, char** argv) {
   std::string error;
   bool ok = false;
   if (which == "ct") ok = test::paperCtCrop(&mesh, &error);
+  // tet_peer_bench --ct's crop: corner (112, 112, 33), slices 2 apart.
+  else if (which == "ct-peer") ok = test::ctHeadCrop(32, 112, 112, 33, &mesh, &error, 2);
   else if (which == "lox") ok = test::loxPost(&mesh, &error);
   else if (which == "lox-io" || which == "bluntfin-io" || which == "combustion-io") {
     // The formats' PLOT3D generator (welded seams), quantised to 2^29 over
@@ -164,7 +166,7 @@ int main(int argc, char** argv) {
   std::printf("%-8s %9zu %9zu %10s %9s %11.2f %12.2f\n", "100%", mesh.tets.size(), mesh.positions.size(), "-", "-",
               full.worst, full.mean_minimum);
   const std::vector<uint64_t> counts = tetCounts(mesh, result);
-  for (double fraction : {0.5, 0.2, 0.1, 0.05}) {
+  for (double fraction : {0.5, 0.2, 0.1, 0.05, 0.02, 0.01}) {
     const uint64_t target = uint64_t(fraction * double(mesh.tets.size()));
     size_t k = 0;
     while (k < counts.size() && counts[k] > target) ++k;
