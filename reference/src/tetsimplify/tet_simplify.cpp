@@ -2,28 +2,29 @@
 // into batches of independent half-edge collapses.
 //
 // A half-edge collapse removes its vt, so every live vertex keeps one
-// candidate: its cheapest allowed target vs (Table 1) and that cost. A batch
-// takes the candidates up to batch_cost_ratio times the cheapest one or the
-// batch_min_fraction quantile, whichever is higher, sorted; for each it
-// recomputes the costs of all targets (the paper's costs of neighbours go
-// stale, see below) and tries them cheapest first against the consistency
-// tests: Table 1, the link condition, exact orientation of every changed tet,
-// the optional minimum dihedral angle, and the boundary self-intersection
-// test. A collapse locks every vertex of star(vs) u star(vt); a candidate
-// with a locked vs or vt waits for the next batch, which is exactly the
-// independence rule (stars are disjoint unless an end of one collapse is a
-// neighbour of an end of the other), and keeps every unlocked vertex's star
-// as it was at the start of the batch. The vertices a collapse changed (the
-// new star of vs) are all locked, so their candidates are recomputed once,
-// at the end of the batch, and a vertex whose targets all failed is not
-// tried again until a collapse changes its star.
+// candidate: its cheapest target vs that Table 1 allows, and that cost. A
+// batch takes the candidates up to batch_cost_ratio times the cheapest one or
+// the batch_min_fraction quantile, whichever is higher, sorted, and tries each
+// against the consistency tests: exact orientation of every changed tet, the
+// optional minimum dihedral angle, the link condition (with the PT decoder's
+// split rule), and the boundary self-intersection test. With quadric costs
+// the candidate's own target is tried first; if it fails, and always with the
+// paper's costs, all targets are listed with fresh costs and tried cheapest
+// first up to the batch's limit. A collapse locks every vertex of star(vs) u
+// star(vt); a candidate with a locked vs or vt waits for the next batch, which
+// is exactly the independence rule (stars are disjoint unless an end of one
+// collapse is a neighbour of an end of the other), and keeps every unlocked
+// vertex's star as it was at the start of the batch. A vertex whose targets
+// all failed is not tried again until a collapse changes its neighbourhood.
 //
 // Quadrics accumulate (Garland-Heckbert): vs takes vt's quadric, so a cost
 // measures the error against the input's field over every input tet the
-// vertex stands for, and only the candidates around vs change. The paper's
-// costs depend on the tets around both ends, so those of the neighbours'
-// neighbours go stale; they are recomputed when taken, and a candidate whose
-// cost rose above the batch's limit waits.
+// vertex stands for, and only the candidates around vs change: they are
+// brought up to date right after the collapse, so candidate costs are always
+// exact. The paper's costs depend on the tets around both ends: the
+// candidates of the new star of vs (all locked) are recomputed at the end of
+// the batch, those of their neighbours go stale and are recomputed when
+// taken, and a candidate whose cost rose above the batch's limit waits.
 #include "tetsimplify/tet_simplify.h"
 
 #include <algorithm>
