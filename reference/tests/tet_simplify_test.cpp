@@ -223,92 +223,110 @@ int64_t eulerAndManifold(const Replay& r, std::vector<Tri>* boundary, const std:
 // Vertex links: connected, every link edge in one or two link triangles,
 // Euler characteristic 2 when closed and 1 with a rim.
 void expectLinks(const Replay& r, const std::vector<uint32_t>& vertices, const std::string& where) {
+  std::vector<std::array<uint32_t, 2>> edges;
+  std::vector<uint32_t> verts, parent;
   for (uint32_t v : vertices) {
     const std::vector<uint32_t> s = r.liveStar(v);
     if (s.empty()) continue;
-    std::map<std::array<uint32_t, 2>, int> edge_count;
-    std::map<uint32_t, uint32_t> parent;
-    std::function<uint32_t(uint32_t)> find = [&](uint32_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
+    edges.clear();
+    verts.clear();
     for (uint32_t t : s) {
       std::array<uint32_t, 3> o;
       int n = 0;
       for (uint32_t x : r.tets[t]) {
         if (x != v) o[n++] = x;
       }
-      for (uint32_t x : o) {
-        if (!parent.count(x)) parent[x] = x;
-      }
       for (int i = 0; i < 3; ++i) {
-        const uint32_t a = o[i], b = o[(i + 1) % 3];
-        ++edge_count[{std::min(a, b), std::max(a, b)}];
-        parent[find(a)] = find(b);
+        verts.push_back(o[i]);
+        edges.push_back({std::min(o[i], o[(i + 1) % 3]), std::max(o[i], o[(i + 1) % 3])});
       }
     }
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    std::sort(edges.begin(), edges.end());
+    auto index = [&](uint32_t x) { return uint32_t(std::lower_bound(verts.begin(), verts.end(), x) - verts.begin()); };
+    parent.resize(verts.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    size_t unique_edges = 0, components = verts.size();
     int rim = 0;
-    for (const auto& [e, n] : edge_count) {
-      ASSERT_LE(n, 2) << where << ": vertex " << v << "'s link is not a surface";
-      rim += n == 1;
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i + 1;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      ASSERT_LE(j - i, 2u) << where << ": vertex " << v << "'s link is not a surface";
+      rim += j - i == 1;
+      ++unique_edges;
+      const uint32_t a = find(index(edges[i][0])), b = find(index(edges[i][1]));
+      if (a != b) {
+        parent[a] = b;
+        --components;
+      }
+      i = j;
     }
-    std::map<uint32_t, bool> roots;
-    for (const auto& [x, p] : parent) roots[find(x)] = true;
-    EXPECT_EQ(roots.size(), 1u) << where << ": vertex " << v << "'s link is not connected";
-    const int64_t euler = int64_t(parent.size()) - int64_t(edge_count.size()) + int64_t(s.size());
+    EXPECT_EQ(components, 1u) << where << ": vertex " << v << "'s link is not connected";
+    const int64_t euler = int64_t(verts.size()) - int64_t(unique_edges) + int64_t(s.size());
     EXPECT_EQ(euler, rim ? 1 : 2) << where << ": vertex " << v << "'s link is neither a sphere nor a disk";
   }
 }
 
-// All pairs of boundary triangles sharing a cell of a uniform grid.
+// All pairs of boundary triangles sharing a cell of a uniform grid (each pair
+// tested once, in the lowest cell both cover).
 uint64_t boundaryClashes(const Replay& r, const std::vector<Tri>& boundary) {
   if (boundary.empty()) return 0;
   std::array<int64_t, 3> lo = {INT64_MAX, INT64_MAX, INT64_MAX}, hi = {0, 0, 0};
+  std::vector<std::array<int64_t, 6>> box(boundary.size());
   double extent = 0.0;
-  for (const Tri& f : boundary) {
+  for (size_t i = 0; i < boundary.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
       int64_t a = INT64_MAX, b = 0;
-      for (uint32_t v : f) {
+      for (uint32_t v : boundary[i]) {
         a = std::min<int64_t>(a, r.positions[v][k]);
         b = std::max<int64_t>(b, r.positions[v][k]);
       }
+      box[i][k] = a;
+      box[i][k + 3] = b;
       lo[k] = std::min(lo[k], a);
       hi[k] = std::max(hi[k], b);
-      extent = std::max(extent, double(b - a));
+      extent += double(b - a);
     }
   }
-  int64_t cell = std::max<int64_t>(1, int64_t(extent));
+  const int64_t cell = std::max<int64_t>(1, int64_t(2.0 * extent / (3.0 * double(boundary.size()))));
   int64_t dims[3];
   for (int k = 0; k < 3; ++k) dims[k] = (hi[k] - lo[k]) / cell + 1;
-  std::map<int64_t, std::vector<uint32_t>> cells;
+  std::vector<std::array<int64_t, 6>> range(boundary.size());
+  std::vector<std::pair<int64_t, uint32_t>> entries;
   for (uint32_t i = 0; i < boundary.size(); ++i) {
-    int64_t a[3], b[3];
     for (int k = 0; k < 3; ++k) {
-      int64_t l = INT64_MAX, h = 0;
-      for (uint32_t v : boundary[i]) {
-        l = std::min<int64_t>(l, r.positions[v][k]);
-        h = std::max<int64_t>(h, r.positions[v][k]);
-      }
-      a[k] = (l - lo[k]) / cell;
-      b[k] = (h - lo[k]) / cell;
+      range[i][k] = (box[i][k] - lo[k]) / cell;
+      range[i][k + 3] = (box[i][k + 3] - lo[k]) / cell;
     }
-    for (int64_t z = a[2]; z <= b[2]; ++z) {
-      for (int64_t y = a[1]; y <= b[1]; ++y) {
-        for (int64_t x = a[0]; x <= b[0]; ++x) cells[(z * dims[1] + y) * dims[0] + x].push_back(i);
+    for (int64_t z = range[i][2]; z <= range[i][5]; ++z) {
+      for (int64_t y = range[i][1]; y <= range[i][4]; ++y) {
+        for (int64_t x = range[i][0]; x <= range[i][3]; ++x) entries.push_back({(z * dims[1] + y) * dims[0] + x, i});
       }
     }
   }
+  std::sort(entries.begin(), entries.end());
   uint64_t clashes = 0;
-  std::map<std::pair<uint32_t, uint32_t>, bool> tested;
-  for (const auto& [c, list] : cells) {
-    for (size_t i = 0; i < list.size(); ++i) {
-      for (size_t j = 0; j < i; ++j) {
-        const auto key = std::make_pair(std::min(list[i], list[j]), std::max(list[i], list[j]));
-        if (tested[key]) continue;
-        tested[key] = true;
-        clashes += trianglesClash(boundary[list[i]], boundary[list[j]], r.positions.data());
+  for (size_t g = 0; g < entries.size();) {
+    size_t h = g + 1;
+    while (h < entries.size() && entries[h].first == entries[g].first) ++h;
+    const int64_t c = entries[g].first;
+    for (size_t i = g; i < h; ++i) {
+      for (size_t j = g; j < i; ++j) {
+        const auto &a = range[entries[i].second], &b = range[entries[j].second];
+        const int64_t corner =
+            (std::max(a[2], b[2]) * dims[1] + std::max(a[1], b[1])) * dims[0] + std::max(a[0], b[0]);
+        if (corner != c) continue;
+        const auto &p = box[entries[i].second], &q = box[entries[j].second];
+        if (p[0] > q[3] || q[0] > p[3] || p[1] > q[4] || q[1] > p[4] || p[2] > q[5] || q[2] > p[5]) continue;
+        clashes += trianglesClash(boundary[entries[i].second], boundary[entries[j].second], r.positions.data());
       }
     }
+    g = h;
   }
   return clashes;
 }
@@ -444,6 +462,18 @@ TEST(TetSimplify, RejectsBrokenInput) {
   mesh.tets.push_back({1, 2, 3, 4});
   e = simplifyTets(mesh, TetSimplifyOptions{}, &result);
   EXPECT_EQ(e.status, Status::kInvalidArgument);
+  // Two tets touching at one vertex: its link is two triangles.
+  mesh.positions = {{100, 100, 100}, {200, 100, 100}, {100, 200, 100}, {100, 100, 200},
+                    {0, 100, 100},   {100, 0, 100},   {100, 100, 0}};
+  mesh.tets = {{0, 1, 2, 3}, {0, 4, 5, 6}};
+  for (auto& t : mesh.tets) {
+    if (orient3d(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]) < 0) {
+      std::swap(t[1], t[2]);
+    }
+  }
+  e = simplifyTets(mesh, TetSimplifyOptions{}, &result);
+  EXPECT_EQ(e.status, Status::kInvalidArgument);
+  EXPECT_NE(e.message.find("vertex 0"), std::string::npos) << e.message;
 }
 
 // ------------------------------------------------------------ real meshes --
@@ -532,6 +562,32 @@ TEST(TetSimplify, MinDihedralHonoured) {
 TEST(TetSimplify, DihedralOfRegularAndKuhnTets) {
   // Kuhn's tets (the CT crop's) have dihedral angles of 45, 60 and 90 degrees.
   EXPECT_NEAR(minDihedralDegrees({0, 0, 0}, {1024, 0, 0}, {1024, 1024, 0}, {1024, 1024, 1024}), 45.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace mrsv
+
+namespace mrsv {
+namespace {
+
+// The intersection test matters: without it, the hand's boundary (fingers
+// close together) crosses itself at some level; with it (HandEveryBatchValid),
+// never.
+TEST(TetSimplify, HandBoundaryCrossesWithoutIntersectionTest) {
+  const QuantizedTetMesh mesh = loadMedit("hand_7234v_29998tet.mesh");
+  TetSimplifyOptions options;
+  options.boundary_intersection_test = false;
+  const TetSimplifyResult result = simplifyOrFail(mesh, options);
+  EXPECT_EQ(result.stats.evaded_self_intersection, 0u);
+  Replay r(mesh);
+  std::vector<Tri> boundary;
+  uint64_t worst = 0;
+  for (const auto& batch : result.batches) {
+    for (const TetCollapse& c : batch) r.collapse(c.vs, c.vt);
+    eulerAndManifold(r, &boundary, "hand without test");
+    worst = std::max(worst, boundaryClashes(r, boundary));
+  }
+  EXPECT_GT(worst, 0u);
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ bool readMeditTets(const std::string& path, QuantizedTetMesh* mesh, std::string*
   return orient(mesh, error);
 }
 
-bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error) {
+bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error, int z_scale) {
   const std::string path = std::string(MRSV_SHARED_DATA) + "/volume/ct_head_stanford_cthead_256x256x99_uint8.raw.zst";
   std::vector<uint8_t> packed;
   if (!readFile(path, &packed)) {
@@ -111,7 +111,7 @@ bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::stri
   for (int z = 0; z < n; ++z) {
     for (int y = 0; y < n; ++y) {
       for (int x = 0; x < n; ++x) {
-        mesh->positions.push_back({x * 1024, y * 1024, z * 1024});
+        mesh->positions.push_back({x * 1024, y * 1024, z * 1024 * z_scale});
         mesh->fields[0].push_back(volume[(size_t(z + z0) * sy + (y + y0)) * sx + (x + x0)]);
       }
     }
@@ -180,14 +180,16 @@ bool loxPost(QuantizedTetMesh* mesh, std::string* error) {
     for (size_t i = 0; i < np; ++i) points[i][k] = bef(&xyz[off + (k * np + i) * 4]);
   }
   for (size_t i = 0; i < np; ++i) iblank[i] = int32_t(be32(&xyz[off + (3 * np + i) * 4]));
-  // Q file: dims, then mach, alpha, re, time, then 5 fields; density first.
+  // Q file: dims, then mach, alpha, re, time, then 5 fields (density,
+  // x, y, z momentum, energy). This file's density is 1 everywhere (an
+  // incompressible solution), so the scalar is the x momentum.
   size_t qoff = be32(q.data()) == uint32_t(ni) ? 12 + 16 : 20 + 24;
-  if (q.size() < qoff + np * 4) {
+  if (q.size() < qoff + 2 * np * 4) {
     *error = base + ".q: too short";
     return false;
   }
   std::vector<double> density(np);
-  for (size_t i = 0; i < np; ++i) density[i] = bef(&q[qoff + i * 4]);
+  for (size_t i = 0; i < np; ++i) density[i] = bef(&q[qoff + (np + i) * 4]);
 
   std::array<double, 3> lo = points[0], hi = points[0];
   for (const auto& p : points) {
@@ -223,6 +225,11 @@ bool loxPost(QuantizedTetMesh* mesh, std::string* error) {
       }
     }
   }
+  // The grid wraps around the post: its first and last i planes hold the
+  // same points (1,444 pairs), left apart as in the file (welded, vertex 0's
+  // link is an annulus), so the boundary touches itself along the seam and
+  // the self-intersection test refuses the collapses that would move it
+  // there (outside flat fans).
   // Only the vertices the tets use.
   std::vector<uint32_t> map(np, ~0u);
   mesh->positions.clear();

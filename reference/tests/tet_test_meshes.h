@@ -22,13 +22,15 @@ bool readMeditTets(const std::string& path, QuantizedTetMesh* mesh, std::string*
 
 // The n^3-sample crop of the CT head starting at sample (x0, y0, z0), as 6
 // tets per cube around each cube's main diagonal (conforming faces), sample
-// values as the scalar field. Positions are sample indices times 1024.
-bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error);
+// values as the scalar field. Positions are sample indices times 1024
+// (times 1024 z_scale along z: the volume's slices are 2 pixels apart).
+bool ctHeadCrop(int n, int x0, int y0, int z0, QuantizedTetMesh* mesh, std::string* error, int z_scale = 1);
 // The paper's crop (7.2): 32^3 samples, 178,746 tets.
 bool paperCtCrop(QuantizedTetMesh* mesh, std::string* error);
 
-// The LOX post (PLOT3D, 38 x 76 x 38, IBLANK cells left out) as 5 tets per
-// hex, alternating parity so faces conform; density as the scalar.
+// The LOX post (PLOT3D, 38 x 76 x 38, cells with an IBLANK 0 corner left
+// out: none in this file) as 5 tets per hex, alternating parity so faces
+// conform; the x momentum as the scalar (the file's density is constant).
 bool loxPost(QuantizedTetMesh* mesh, std::string* error);
 
 // Point location in a tet mesh through a uniform grid of tet bounding boxes;

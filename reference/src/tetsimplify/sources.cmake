@@ -17,12 +17,12 @@ set(MRSV_TETSIMPLIFY_TESTS
 # tools/bench/tet_simplify_bench: build time, collapses per second, batch
 # sizes and scalar PSNR per level of the CT crop (and the LOX post).
 function(mrsv_add_tet_simplify_bench)
-  if(MRSV_DECODER_ONLY OR NOT TARGET mrsv_encode OR NOT ZSTD_LIBRARY)
+  if(MRSV_DECODER_ONLY OR NOT TARGET mrsv_encode OR NOT TARGET mrsv_io OR NOT ZSTD_LIBRARY)
     return()
   endif()
   add_executable(tet_simplify_bench tools/bench/tet_simplify_bench.cpp reference/tests/tet_test_meshes.cpp)
   target_include_directories(tet_simplify_bench PRIVATE reference/src reference/tests ${ZSTD_INCLUDE_DIR})
-  target_link_libraries(tet_simplify_bench PRIVATE mrsv_encode ${ZSTD_LIBRARY})
+  target_link_libraries(tet_simplify_bench PRIVATE mrsv_encode mrsv_io ${ZSTD_LIBRARY})
   target_compile_definitions(tet_simplify_bench PRIVATE MRSV_SHARED_DATA="${MRSV_SHARED_DATA}")
 endfunction()
 if(NOT MRSV_DECODER_ONLY AND CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)

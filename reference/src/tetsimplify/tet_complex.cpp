@@ -62,6 +62,7 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
   // vertex's star, a short list, so no global sort or hash is needed.
   std::vector<FaceEntry> faces;
   std::vector<std::array<uint32_t, 2>> edges;
+  std::vector<uint32_t> parent;
   for (uint32_t m = 0; m < nv; ++m) {
     faces.clear();
     edges.clear();
@@ -125,6 +126,26 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
     }
     std::sort(ends.begin(), ends.end());
     link_vertices = static_cast<uint32_t>(std::unique(ends.begin(), ends.end()) - ends.begin());
+    // Connected (a sphere beside a torus has characteristic 2 too).
+    parent.resize(link_vertices);
+    for (uint32_t i = 0; i < link_vertices; ++i) parent[i] = i;
+    auto find = [&](uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    uint32_t components = link_vertices;
+    for (const auto& e : edges) {
+      const uint32_t a = find(uint32_t(std::lower_bound(ends.begin(), ends.begin() + link_vertices, e[0]) - ends.begin()));
+      const uint32_t b = find(uint32_t(std::lower_bound(ends.begin(), ends.begin() + link_vertices, e[1]) - ends.begin()));
+      if (a != b) {
+        parent[a] = b;
+        --components;
+      }
+    }
+    if (components != 1) {
+      *error = "vertex " + std::to_string(m) + ": its link is not connected";
+      return false;
+    }
     const int64_t euler = int64_t(link_vertices) - unique_edges + link_triangles;
     if (euler != (border_edges ? 1 : 2)) {
       *error = "vertex " + std::to_string(m) + ": its link is neither a sphere nor a disk (Euler characteristic " +

@@ -1,5 +1,5 @@
 // Collapse costs of the tet simplifier: the paper's terms (6.1) and a quadric
-// of the linear scalar field (spec decision D38). Both work in normalised
+// of the linear scalar field (spec decision D44). Both work in normalised
 // units: positions in mean edge lengths from the bounding box's corner, the
 // scalar (the first field) in its range from its minimum.
 #pragma once

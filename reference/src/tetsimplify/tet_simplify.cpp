@@ -2,28 +2,29 @@
 // into batches of independent half-edge collapses.
 //
 // A half-edge collapse removes its vt, so every live vertex keeps one
-// candidate: its cheapest allowed target vs (Table 1) and that cost. A batch
-// takes the candidates up to batch_cost_ratio times the cheapest one or the
-// batch_min_fraction quantile, whichever is higher, sorted; for each it
-// recomputes the costs of all targets (the paper's costs of neighbours go
-// stale, see below) and tries them cheapest first against the consistency
-// tests: Table 1, the link condition, exact orientation of every changed tet,
-// the optional minimum dihedral angle, and the boundary self-intersection
-// test. A collapse locks every vertex of star(vs) u star(vt); a candidate
-// with a locked vs or vt waits for the next batch, which is exactly the
-// independence rule (stars are disjoint unless an end of one collapse is a
-// neighbour of an end of the other), and keeps every unlocked vertex's star
-// as it was at the start of the batch. The vertices a collapse changed (the
-// new star of vs) are all locked, so their candidates are recomputed once,
-// at the end of the batch, and a vertex whose targets all failed is not
-// tried again until a collapse changes its star.
+// candidate: its cheapest target vs that Table 1 allows, and that cost. A
+// batch takes the candidates up to batch_cost_ratio times the cheapest one or
+// the batch_min_fraction quantile, whichever is higher, sorted, and tries each
+// against the consistency tests: exact orientation of every changed tet, the
+// optional minimum dihedral angle, the link condition (with the PT decoder's
+// split rule), and the boundary self-intersection test. With quadric costs
+// the candidate's own target is tried first; if it fails, and always with the
+// paper's costs, all targets are listed with fresh costs and tried cheapest
+// first up to the batch's limit. A collapse locks every vertex of star(vs) u
+// star(vt); a candidate with a locked vs or vt waits for the next batch, which
+// is exactly the independence rule (stars are disjoint unless an end of one
+// collapse is a neighbour of an end of the other), and keeps every unlocked
+// vertex's star as it was at the start of the batch. A vertex whose targets
+// all failed is not tried again until a collapse changes its neighbourhood.
 //
 // Quadrics accumulate (Garland-Heckbert): vs takes vt's quadric, so a cost
 // measures the error against the input's field over every input tet the
-// vertex stands for, and only the candidates around vs change. The paper's
-// costs depend on the tets around both ends, so those of the neighbours'
-// neighbours go stale; they are recomputed when taken, and a candidate whose
-// cost rose above the batch's limit waits.
+// vertex stands for, and only the candidates around vs change: they are
+// brought up to date right after the collapse, so candidate costs are always
+// exact. The paper's costs depend on the tets around both ends: the
+// candidates of the new star of vs (all locked) are recomputed at the end of
+// the batch, those of their neighbours go stale and are recomputed when
+// taken, and a candidate whose cost rose above the batch's limit waits.
 #include "tetsimplify/tet_simplify.h"
 
 #include <algorithm>
@@ -123,6 +124,13 @@ class TetSimplifier {
   // target was neither vs nor vt just compares its candidate with x -> vs.
   void updateAfterCollapse(uint32_t vs, uint32_t vt);
   Outcome check(uint32_t vs, uint32_t vt, uint32_t* vanishing);
+  // Whether all of v's boundary faces lie in one plane (exactly). Collapsing
+  // a boundary edge of such a v then needs no intersection test: the new
+  // faces lie in the same plane, each oriented as the face it replaces (the
+  // orientation test of the tet below it sees to that), so they triangulate
+  // the same polygon, star-shaped from vs, and the boundary as a point set
+  // does not change. (Every boundary collapse inside a flat side of a grid.)
+  bool planarFan(uint32_t v);
   void lockStar(uint32_t v);
 
   const TetSimplifyOptions& options_;
@@ -353,7 +361,7 @@ Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
   *vanishing = ring;
   if (outcome != Outcome::kOk) return outcome;
   if (!link_.holds(complex_, vs, vt, !options_.allow_boundary_cases_2_3)) return Outcome::kLink;
-  if (boundary_moves) {
+  if (boundary_moves && !planarFan(vt)) {
     for (size_t i = 0; i < new_faces_.size(); ++i) {
       if (index_.clashes(complex_, new_faces_[i], vt)) return Outcome::kSelfIntersection;
       for (size_t j = 0; j < i; ++j) {
@@ -364,6 +372,29 @@ Outcome TetSimplifier::check(uint32_t vs, uint32_t vt, uint32_t* vanishing) {
     }
   }
   return Outcome::kOk;
+}
+
+bool TetSimplifier::planarFan(uint32_t v) {
+  constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  const IPoint* plane[3] = {nullptr, nullptr, nullptr};
+  bool planar = true;
+  complex_.forEachTet(v, [&](uint32_t t, uint32_t corner) {
+    const uint8_t mask = complex_.boundaryMask(t);
+    if (!planar || mask == 0) return;
+    const auto& w = complex_.tet(t);
+    for (uint32_t f = 0; f < 4; ++f) {
+      if (f == corner || !(mask >> f & 1)) continue;
+      for (int i = 0; i < 3; ++i) {
+        const IPoint& p = complex_.position(w[kFace[f][i]]);
+        if (!plane[0]) {
+          for (int j = 0; j < 3; ++j) plane[j] = &complex_.position(w[kFace[f][j]]);
+          break;
+        }
+        if (tetsimplify::orient3d(*plane[0], *plane[1], *plane[2], p) != 0) planar = false;
+      }
+    }
+  });
+  return planar;
 }
 
 void TetSimplifier::lockStar(uint32_t v) {
@@ -529,7 +560,7 @@ void TetSimplifier::run(TetSimplifyResult* out) {
     // now wait at their true, higher cost.
     if (!batch.empty()) out->batches.push_back(batch);
   }
-  report();
+  if (options_.progress) options_.progress(1.0);
   stats_.batches = out->batches.size();
   stats_.final_tets = complex_.liveTets();
   stats_.final_vertices = complex_.liveVertices();

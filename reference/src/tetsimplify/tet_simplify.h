@@ -33,7 +33,7 @@ struct TetCollapse {
 };
 
 enum class TetCost {
-  kQuadric,  // volume-weighted quadric of the linear scalar field plus boundary planes (D38)
+  kQuadric,  // volume-weighted quadric of the linear scalar field plus boundary planes (D44)
   kPaper,    // Staadt-Gross 6.1: scalar difference, volume, equilateral, edge length, boundary normals
 };
 
@@ -82,12 +82,14 @@ struct TetSimplifyOptions {
 struct TetSimplifyStats {
   uint64_t collapses = 0;
   uint64_t batches = 0;
-  // Collapses evaded, by the first test they failed.
+  // Collapses evaded, by the first test they failed (tests in the order
+  // below). A Table 1 evasion is a target the table refuses that was cheaper
+  // than the one the vertex got and within the batch's limit.
   uint64_t evaded_boundary_table = 0;   // Table 1 cases 2 to 4
-  uint64_t evaded_link = 0;             // link condition
   uint64_t evaded_inversion = 0;        // a tet would turn: orient3d < 0
   uint64_t evaded_degenerate = 0;       // a tet would go flat: orient3d == 0
   uint64_t evaded_min_dihedral = 0;     // a tet would have a smaller dihedral angle than allowed
+  uint64_t evaded_link = 0;             // link condition (and the PT decoder's split rule)
   uint64_t evaded_self_intersection = 0;  // a boundary triangle would cross another
   uint64_t final_tets = 0;
   uint64_t final_vertices = 0;
