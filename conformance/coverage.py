@@ -42,6 +42,12 @@ NOT_BY_VECTORS = {
     "R4.3-2": "implied by 3.1: an axis of at most 2^24 samples has size(0) below 2^24 + 2^16 + 3",
     "R2.6-11": "a rule for encoders: the encoder refuses such metadata with 903 (unit tests)",
     "R6.7.2-5": "implied by R6.7.2-1 to R6.7.2-4: no coded values pass those and give an invalid split",
+    "R7.1-6": "a decoder of the tet profile alone meeting GHDR or PHDR: every decoder the suite runs implements "
+              "the profiles it is given (run_conformance.py --profile); the reference tests build it in memory",
+    "R7.6.1-1": "a rotation never fails in a sphere or disk: in TBAS rule 6 of 7.4 reports it (R7.4-6, "
+                "pt_base_duplicate_tet), and every level a split reaches is one (7.3)",
+    "R7.6.3-1": "never fails for a cut 7.7.2 decodes in a sphere or disk (7.6.3): no coded values reach it",
+    "R7.6.3-2": "never fails for a cut 7.7.2 decodes in a sphere or disk (7.6.3): no coded values reach it",
     "RA.3-1": "robustness on any input: the fuzz targets (fuzz/) and their corpus replays",
     "RA.3-2": "allocation before checks: the fuzz targets under AddressSanitizer, with small memory limits",
     "RB.4-1": "allocation before checks: the fuzz targets under AddressSanitizer, with small memory limits",

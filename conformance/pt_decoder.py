@@ -32,7 +32,7 @@ MAX_LINK = 1024  # vertices in the link of a split vertex (7.6.1)
 class PTError(Exception):
     def __init__(self, code, offset, element, message=""):
         super().__init__(f"E{code} offset {offset}: {element} {message}".strip())
-        self.code, self.offset, self.element = code, offset, element
+        self.code, self.offset, self.element, self.detail = code, offset, element, message
 
 
 class StringEnd(Exception):
@@ -347,9 +347,8 @@ def parse_thdr(payload, p):
         bits = payload[o]
         if not 1 <= bits <= 30:
             raise PTError(301, r, f"THDR.field[{f}].bits")
-        for i in range(7):
-            if payload[o + 1 + i]:
-                raise PTError(105, r + 1 + i, f"THDR.field[{f}].reserved")
+        if any(payload[o + 1:o + 8]):
+            raise PTError(105, r + 1, f"THDR.field[{f}].reserved")
         forigin, fstep = struct.unpack_from("<2d", payload, o + 8)
         if not math.isfinite(forigin):
             raise PTError(301, r + 8, f"THDR.field[{f}].origin")
@@ -578,6 +577,8 @@ class PTStream:
         closed = not L.has_boundary()
         e = k if closed else k - 1
         edges = [(cut[i], cut[(i + 1) % k]) for i in range(e)]
+        if len(self.tets) + e > h.tet_count:
+            raise SplitInvalid("more tets than tet_count")
         # 7.6.3 the region
         seeds, blocks = set(), set()
         for a, b in edges:
@@ -600,8 +601,6 @@ class PTStream:
                     stack.append(o)
         if region & blocks:
             raise SplitInvalid("region reaches a block")
-        if len(self.tets) + e > h.tet_count:
-            raise SplitInvalid("more tets than tet_count")
         # 7.6.4 checks
         P = self.positions + [tuple(vt_pos)]
         for slot in sorted(region):
