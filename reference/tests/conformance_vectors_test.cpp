@@ -5,21 +5,25 @@
 
 #include "mrsv/grid.h"
 #include "mrsv/progressive_mesh.h"
+#include "mrsv/progressive_tet_mesh.h"
 #include "test_support.h"
 
 namespace mrsv {
 namespace {
 
-// Grids and PM streams alike: the stream's first chunk says which it is.
+// Grids, PM and PT streams alike: the stream's first chunk says which it is.
 struct AnyDecoded {
-  bool pm = false;
+  bool pm = false, pt = false;
   DecodedGrid grid;
   DecodedMesh mesh;
-  const Container& container() const { return pm ? mesh.container : grid.container; }
+  DecodedTetMesh tets;
+  const Container& container() const { return pt ? tets.container : pm ? mesh.container : grid.container; }
 };
 Error decodeAny(const uint8_t* data, size_t size, const DecodeOptions& options, AnyDecoded* out) {
   out->pm = isProgressiveMeshStream(data, size);
+  out->pt = isProgressiveTetStream(data, size);
   if (out->pm) return decodeProgressiveMesh(data, size, options, &out->mesh);
+  if (out->pt) return decodeProgressiveTetMesh(data, size, options, &out->tets);
   return decodeGrid(data, size, options, &out->grid);
 }
 
@@ -43,29 +47,39 @@ TEST(ConformanceVectors, EachDecodesOrFailsAsTheManifestSays) {
   }
 }
 
-// spec 1.6: decodeGrid implements the grid profile and decodeProgressiveMesh the mesh
-// profile; each reports 904 at the content header for a valid stream of the other.
-TEST(ConformanceVectors, ADecoderOfOneProfileReports904ForTheOther) {
-  int grids = 0, meshes = 0;
+// spec 1.6: decodeGrid implements the grid profile, decodeProgressiveMesh the
+// mesh profile and decodeProgressiveTetMesh the tet profile; each reports 904
+// at the content header for a valid stream of another.
+TEST(ConformanceVectors, ADecoderOfOneProfileReports904ForTheOthers) {
+  int grids = 0, meshes = 0, tets = 0;
   for (const auto& v : manifestVectors()) {
     if (!v.valid) continue;
     std::vector<uint8_t> bytes = readFileOrFail(sourcePath("conformance/" + v.file));
     if (bytes.size() < kFileHeaderSize + 12) continue;  // no content header: every profile's
-    Error e;
-    if (isProgressiveMeshStream(bytes.data(), bytes.size())) {
+    const bool pm = isProgressiveMeshStream(bytes.data(), bytes.size());
+    const bool pt = isProgressiveTetStream(bytes.data(), bytes.size());
+    std::vector<Error> others;
+    if (pm || pt) {
       DecodedGrid grid;
-      e = decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid);
-      ++meshes;
-    } else {
-      DecodedMesh mesh;
-      e = decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &mesh);
-      ++grids;
+      others.push_back(decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &grid));
     }
-    EXPECT_EQ(e.status, Status::kUnsupportedProfile) << v.file << ": " << e.describe();
-    EXPECT_EQ(e.offset, 12u) << v.file;
+    if (!pm) {
+      DecodedMesh mesh;
+      others.push_back(decodeProgressiveMesh(bytes.data(), bytes.size(), DecodeOptions{}, &mesh));
+    }
+    if (!pt) {
+      DecodedTetMesh tet;
+      others.push_back(decodeProgressiveTetMesh(bytes.data(), bytes.size(), DecodeOptions{}, &tet));
+    }
+    ++(pm ? meshes : pt ? tets : grids);
+    for (const Error& e : others) {
+      EXPECT_EQ(e.status, Status::kUnsupportedProfile) << v.file << ": " << e.describe();
+      EXPECT_EQ(e.offset, 12u) << v.file;
+    }
   }
   EXPECT_GT(grids, 0);
   EXPECT_GT(meshes, 0);
+  EXPECT_GT(tets, 0);
 }
 
 TEST(ConformanceVectors, EveryPrefixOfAValidVectorIsHandled) {
