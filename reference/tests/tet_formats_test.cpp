@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mrsv/file_io.h"
@@ -97,6 +100,143 @@ uint64_t nonPositiveTets(const TetMesh& mesh) {
     n += orient3dSign(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
                       mesh.positions[t[3]]) <= 0;
   return n;
+}
+
+// Whether the tets form a 3-manifold (with boundary) of positive tets: every
+// tet positive by the exact test, every face in one tet or in two that see it
+// with opposite orientations, and every vertex's link (the faces opposite it
+// in its tets) a sphere or a disk: connected, no link edge in more than two
+// link faces, each link vertex's fan a single path or cycle (so no two fans
+// meet at an edge of the mesh), and Euler characteristic 2, or 1 with a
+// boundary.
+struct ManifoldCheck {
+  uint64_t nonpositive = 0, overshared_faces = 0, misoriented_faces = 0, bad_vertices = 0;
+  int64_t first_bad_vertex = -1;
+  std::string first_problem;
+  bool valid() const {
+    return nonpositive == 0 && overshared_faces == 0 && misoriented_faces == 0 && bad_vertices == 0;
+  }
+};
+
+// Number of components among `n` items joined by `pairs` (union-find).
+size_t components(size_t n, const std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+  std::vector<uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto root = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  size_t count = n;
+  for (auto [a, b] : pairs)
+    if (root(a) != root(b)) parent[root(a)] = root(b), --count;
+  return count;
+}
+
+ManifoldCheck checkManifold(const TetMesh& mesh) {
+  ManifoldCheck check;
+  const auto& p = mesh.positions;
+  for (const auto& t : mesh.tets)
+    check.nonpositive += orient3dSign(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) <= 0;
+  // Faces: sorted corners and the parity of the sort.
+  static const int kFaces[4][3] = {
+      {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // outward when positive
+  std::vector<std::pair<std::array<uint32_t, 3>, bool>> faces;
+  faces.reserve(mesh.tets.size() * 4);
+  for (const auto& t : mesh.tets)
+    for (const auto& f : kFaces) {
+      std::array<uint32_t, 3> v = {t[f[0]], t[f[1]], t[f[2]]};
+      bool odd = false;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 2 - i; ++j)
+          if (v[j] > v[j + 1]) std::swap(v[j], v[j + 1]), odd = !odd;
+      faces.push_back({v, odd});
+    }
+  std::sort(faces.begin(), faces.end());
+  for (size_t i = 0; i < faces.size();) {
+    size_t j = i;
+    while (j < faces.size() && faces[j].first == faces[i].first) ++j;
+    if (j - i > 2) ++check.overshared_faces;
+    if (j - i == 2 && faces[i].second == faces[i + 1].second) ++check.misoriented_faces;
+    i = j;
+  }
+  // Vertex links.
+  std::vector<uint32_t> start(p.size() + 1, 0), incident(4 * mesh.tets.size());
+  for (const auto& t : mesh.tets)
+    for (uint32_t v : t) ++start[v + 1];
+  for (size_t v = 0; v < p.size(); ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (uint32_t t = 0; t < mesh.tets.size(); ++t)
+    for (uint32_t v : mesh.tets[t]) incident[fill[v]++] = t;
+  for (uint32_t v = 0; v < p.size(); ++v) {
+    if (start[v] == start[v + 1]) continue;  // unused
+    // The link: triangles of local vertex numbers.
+    std::vector<uint32_t> verts;
+    std::vector<std::array<uint32_t, 3>> tris;
+    for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+      std::array<uint32_t, 3> tri;
+      int n = 0;
+      for (uint32_t w : mesh.tets[incident[k]])
+        if (w != v) tri[n++] = w;
+      tris.push_back(tri);
+      verts.insert(verts.end(), tri.begin(), tri.end());
+    }
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    auto local = [&](uint32_t w) {
+      return uint32_t(std::lower_bound(verts.begin(), verts.end(), w) - verts.begin());
+    };
+    std::vector<std::pair<uint32_t, uint32_t>> edges,
+        joins;  // link edges; pairs of triangles' corners
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> fan(
+        verts.size());  // per link vertex: opposite edges
+    for (auto& tri : tris) {
+      for (uint32_t& w : tri) w = local(w);
+      for (int e = 0; e < 3; ++e) {
+        uint32_t a = tri[e], b = tri[(e + 1) % 3], c = tri[(e + 2) % 3];
+        edges.push_back({std::min(a, b), std::max(a, b)});
+        joins.push_back({a, b});
+        fan[c].push_back({a, b});
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    size_t edge_count = 0, boundary_edges = 0;
+    bool ok = true;
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      ++edge_count;
+      boundary_edges += j - i == 1;
+      ok &= j - i <= 2;
+      i = j;
+    }
+    std::string why = ok ? "" : "a link edge in three or more link faces";
+    if (ok && components(verts.size(), joins) != 1)
+      ok = false, why = "a link of several components";
+    const int64_t euler = int64_t(verts.size()) - int64_t(edge_count) + int64_t(tris.size());
+    if (ok && euler != (boundary_edges ? 1 : 2))
+      ok = false, why = "a link of Euler characteristic " + std::to_string(euler) +
+                        (boundary_edges ? " with a boundary" : " without a boundary");
+    for (uint32_t w = 0; ok && w < verts.size(); ++w) {
+      // The fan around w: its opposite edges must form one path or cycle.
+      std::vector<uint32_t> ends;
+      for (auto [a, b] : fan[w]) ends.push_back(a), ends.push_back(b);
+      std::sort(ends.begin(), ends.end());
+      ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+      std::vector<std::pair<uint32_t, uint32_t>> pairs;
+      for (auto [a, b] : fan[w])
+        pairs.push_back({uint32_t(std::lower_bound(ends.begin(), ends.end(), a) - ends.begin()),
+                         uint32_t(std::lower_bound(ends.begin(), ends.end(), b) - ends.begin())});
+      if (components(ends.size(), pairs) != 1)
+        ok = false, why = "edge to vertex " + std::to_string(verts[w]) + " in several fans of tets";
+    }
+    if (!ok) {
+      if (check.bad_vertices++ == 0) {
+        check.first_bad_vertex = v;
+        check.first_problem = "vertex " + std::to_string(v) + ": " + why;
+      }
+    }
+  }
+  return check;
 }
 
 void expectSameMesh(const TetMesh& a, const TetMesh& b, bool with_fields, const std::string& what) {
@@ -304,33 +444,105 @@ TEST(TetsFromData, Plot3dGivesTheClassicTetCounts) {
   EXPECT_EQ(faces.same_orientation, 0u);
   EXPECT_EQ(nonPositiveTets(fin), 0u);
 
-  // Combustion chamber: 5 * 56 * 32 * 24 = 215,040. Two hexahedra, (39, 0, 0)
-  // and (39, 31, 0), are too distorted for their 5-tet cut: one corner tet
-  // each comes out negative and is flipped, so it folds over its neighbours.
+  // Combustion chamber: 5 * 56 * 32 * 24 = 215,040 for a 5-tet cut. Two
+  // hexahedra, (39, 0, 0) and (39, 31, 0), are too distorted for it (a corner
+  // tet comes out negative); each is cut into 6 tets from its corner 5 or 7,
+  // the one corner whose cut is positive (D44): 215,042.
   TetMesh chamber = plot3dMesh("combustion_chamber_plot3d_57x33x25_f32be.xyz",
                                "combustion_chamber_plot3d_57x33x25_f32be.q", &report);
-  EXPECT_EQ(chamber.tets.size(), 215040u);
+  EXPECT_EQ(chamber.tets.size(), 215040u + 2);
+  EXPECT_EQ(chamber.positions.size(), 57u * 33 * 25);
   EXPECT_EQ(report.welded, 0u);
-  EXPECT_EQ(report.flipped, 2u);
+  EXPECT_EQ(report.flipped, 0u);
+  EXPECT_EQ(report.cut_from_corner, 2u);
+  EXPECT_EQ(report.cut_around_centroid, 0u);
   faces = checkFaces(chamber);
   EXPECT_EQ(faces.more_than_two, 0u);
-  EXPECT_LE(faces.same_orientation, 2u * 4);  // only faces of the two flipped tets
-  EXPECT_GT(faces.same_orientation, 0u);
+  EXPECT_EQ(faces.same_orientation, 0u);
   EXPECT_EQ(nonPositiveTets(chamber), 0u);
 
-  // LOX post: 5 * 37 * 75 * 37 = 513,375. Its IBLANK holds 1 and -1 but no
-  // 0, so no cell is left out; its O-grid seam (j = 0 and j = 75) welds.
+  // LOX post: 5 * 37 * 75 * 37 = 513,375 for a 5-tet cut. Its IBLANK holds 1
+  // and -1 but no 0, so no cell is left out; its O-grid seam (j = 0 and
+  // j = 75) welds. A ring has 75 hexahedra, an odd count, so the seam faces'
+  // diagonals differ from the two sides; the 37 x 37 hexahedra at j = 74 take
+  // those of j = 0 and are cut into 6 tets from a corner: 513,375 + 1,369.
   TetMesh lox = plot3dMesh("lox_post_plot3d_38x76x38_f32be_iblank.xyz", "lox_post_plot3d_38x76x38_f32be.q",
                            &report);
-  EXPECT_EQ(lox.tets.size(), 513375u);
+  EXPECT_EQ(lox.tets.size(), 513375u + 37 * 37);
   EXPECT_EQ(report.cells_left_out, 0u);
   EXPECT_EQ(report.welded, 1444u);
+  EXPECT_EQ(report.cut_from_corner, 37u * 37);
+  EXPECT_EQ(report.cut_around_centroid, 0u);
   EXPECT_EQ(lox.positions.size(), 38u * 76 * 38 - 1444u);
   EXPECT_EQ(report.flipped, 0u);
   faces = checkFaces(lox);
   EXPECT_EQ(faces.more_than_two, 0u);
   EXPECT_EQ(faces.same_orientation, 0u);
   EXPECT_EQ(nonPositiveTets(lox), 0u);
+}
+
+// Every real PLOT3D grid gives a 3-manifold of positive tets, which the
+// progressive encoder needs (before D44 the chamber had 4 folded faces and
+// each of the LOX post's 1,444 seam vertices an annulus for a link).
+TEST(TetsFromData, Plot3dMeshesAreManifoldsOfPositiveTets) {
+  const char* const kGrids[][2] = {
+      {"bluntfin_plot3d_40x32x32_f32be.xyz", "bluntfin_plot3d_40x32x32_f32be.q"},
+      {"combustion_chamber_plot3d_57x33x25_f32be.xyz", "combustion_chamber_plot3d_57x33x25_f32be.q"},
+      {"lox_post_plot3d_38x76x38_f32be_iblank.xyz", "lox_post_plot3d_38x76x38_f32be.q"}};
+  for (const auto& grid : kGrids) {
+    SCOPED_TRACE(grid[0]);
+    TetBuildReport report;
+    ManifoldCheck check = checkManifold(plot3dMesh(grid[0], grid[1], &report));
+    EXPECT_EQ(check.nonpositive, 0u);
+    EXPECT_EQ(check.overshared_faces, 0u);
+    EXPECT_EQ(check.misoriented_faces, 0u);
+    EXPECT_EQ(check.bad_vertices, 0u) << check.first_problem;
+  }
+  // The check finds what it looks for: two tets folded onto one side of
+  // their common face, and two tets meeting at a vertex only.
+  TetMesh folded;
+  folded.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.2, 0.2, 2}};
+  folded.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}};
+  EXPECT_EQ(checkManifold(folded).misoriented_faces, 1u);
+  TetMesh pinched;
+  pinched.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  pinched.tets = {{0, 1, 2, 3}, {0, 4, 6, 5}};
+  ManifoldCheck check = checkManifold(pinched);
+  EXPECT_EQ(check.nonpositive, 0u);
+  EXPECT_EQ(check.bad_vertices, 1u);
+  EXPECT_EQ(check.first_bad_vertex, 0);
+}
+
+// One hexahedron (integer corners, found by a random search) that neither
+// its 5-tet cut nor any of the four 6-tet cuts from a corner fits: 12 tets
+// around an added vertex at the mean of its corners, and the field's mean
+// there. A flat hexahedron fits no cut: a one-line error naming it.
+TEST(TetsFromData, Plot3dHexahedraThe5TetCutDoesNotFit) {
+  Plot3dData data;
+  data.dims[0] = data.dims[1] = data.dims[2] = 2;
+  data.xyz = {{1, 2, -1}, {6, 2, 0}, {2, 4, 2}, {4, 6, 2}, {0, 1, 4}, {5, -1, 6}, {-1, 2, 4}, {3, 2, 4}};
+  data.q.resize(1);
+  data.q[0].name = "density";
+  data.q[0].values = {0, 1, 2, 3, 4, 5, 6, 7};
+  TetMesh mesh;
+  TetBuildReport report;
+  std::string error;
+  ASSERT_TRUE(tetrahedralizePlot3d(data, &mesh, &report, &error)) << error;
+  EXPECT_EQ(report.cut_from_corner, 0u);
+  EXPECT_EQ(report.cut_around_centroid, 1u);
+  EXPECT_EQ(report.flipped, 0u);
+  ASSERT_EQ(mesh.positions.size(), 9u);
+  EXPECT_EQ(mesh.tets.size(), 12u);
+  EXPECT_EQ(mesh.positions[8], (std::array<double, 3>{2.5, 2.25, 2.625}));
+  EXPECT_EQ(mesh.fields[0].values[8], 3.5);
+  ManifoldCheck check = checkManifold(mesh);
+  EXPECT_TRUE(check.valid()) << check.first_problem;
+  EXPECT_EQ(checkFaces(mesh).boundary, 12u);  // the 6 faces, two triangles each
+
+  for (auto& p : data.xyz) p[2] = p[0] * 0.5 + p[1] * 0.25;  // all eight in one plane
+  EXPECT_FALSE(tetrahedralizePlot3d(data, &mesh, &report, &error));
+  EXPECT_NE(error.find("hexahedron (i, j, k) = (0, 0, 0) cannot be cut"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
 }
 
 TEST(TetsFromData, IblankZeroLeavesCellsOut) {

@@ -29,9 +29,11 @@ const char kHelp[] =
     "      .mrsv meta entry 'spacing', else 1 (an X x Y x Z grid gives 6(X-1)(Y-1)(Z-1) tets);\n"
     "  a PLOT3D grid (.xyz: single block, binary, float32, no record markers, IBLANK\n"
     "      optional) with its solution --q FILE.q: 5 tets per hexahedron, alternating with\n"
-    "      the parity of i+j+k so neighbours meet face to face; hexahedra with an IBLANK 0\n"
-    "      corner left out; the q variables become the fields density, momentum_x,\n"
-    "      momentum_y, momentum_z, energy.\n"
+    "      the parity of i+j+k so neighbours meet face to face; points at one position\n"
+    "      welded; a hexahedron the 5 tets do not fit (distorted, or at a seam of odd\n"
+    "      period) cut into 6 tets from a corner or 12 around an added centroid vertex;\n"
+    "      hexahedra with an IBLANK 0 corner left out; the q variables become the fields\n"
+    "      density, momentum_x, momentum_y, momentum_z, energy.\n"
     "Every tet is made positively oriented (exact test; two vertices swapped where needed);\n"
     "a degenerate tet is an error naming it. OUT.node or OUT.ele writes both TetGen files.\n"
     "MEDIT .mesh has no per-vertex fields: they are not written (a note says so).\n"
@@ -141,7 +143,9 @@ int runTetrahedralize(int argc, char** argv) {
                     std::to_string(report.cells) + " hexahedra, " + std::to_string(report.cells_left_out) +
                     " left out (IBLANK 0), " + std::to_string(report.welded) + " coincident points welded, " +
                     std::to_string(report.collapsed) + " collapsed tets dropped, " + std::to_string(report.flipped) +
-                    " tets flipped to positive");
+                    " tets flipped to positive, " + std::to_string(report.cut_from_corner) +
+                    " hexahedra cut into 6 tets from a corner, " + std::to_string(report.cut_around_centroid) +
+                    " into 12 around an added centroid");
   } else {
     GridHeader header;
     std::vector<uint8_t> samples;

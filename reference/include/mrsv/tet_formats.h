@@ -150,6 +150,8 @@ struct TetBuildReport {
   uint64_t flipped = 0;           // tets made positive by swapping two vertices
   uint64_t welded = 0;            // PLOT3D: points merged into an earlier one at the same position
   uint64_t collapsed = 0;         // PLOT3D: tets dropped, two of their corners welded together
+  uint64_t cut_from_corner = 0;   // PLOT3D: hexahedra cut into 6 tets from a corner, not 5
+  uint64_t cut_around_centroid = 0;  // PLOT3D: hexahedra cut into 12 tets around an added vertex
 };
 
 // A box of samples: origin and size per axis (size 0: to the end of the axis).
@@ -198,8 +200,20 @@ bool readPlot3dBytes(const std::string& xyz_name, const uint8_t* xyz, size_t xyz
 // first of them (its q values kept): curvilinear grids have collapsed edges
 // (the blunt fin: 39 at k = 0) and seams (the LOX post's O-grid: 1,444), and
 // without the weld those would be zero-volume tets and slits. A tet with two
-// corners welded together has no volume and is dropped (counted); a tet of
-// four distinct coplanar points is an error naming its hexahedron.
+// corners welded together has no volume and is dropped (counted). Where the
+// 5-tet cut does not fit (decision D44) a hexahedron is cut differently, each
+// face still along the diagonal its neighbour uses: a face that a weld makes
+// common to two hexahedra that are not grid neighbours (a seam whose ring of
+// hexahedra has an odd count, where the parity does not alternate) takes the
+// first hexahedron's diagonal, and a hexahedron whose faces then differ from
+// its parity's, or whose 5 tets are not all alike oriented (a distorted cell,
+// two in the combustion chamber), is cut into 6 tets from a corner that the
+// diagonals of its three faces meet, or else into 12 tets around an added
+// vertex at the mean of its corners (its field values the mean of theirs).
+// The tets of a left-handed hexahedron are flipped (counted). A hexahedron
+// that none of the cuts gives tets of one orientation is an error naming it.
+// The meshes of the real grids of ../shared/data/tet are 3-manifolds of
+// positive tets (tested); a grid that folds onto itself gives no such mesh.
 bool tetrahedralizePlot3d(const Plot3dData& data, TetMesh* mesh, TetBuildReport* report,
                           std::string* error);
 

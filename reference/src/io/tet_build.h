@@ -80,6 +80,49 @@ struct Builder {
     return true;
   }
 
+  // Appends a vertex (not welded to any other) and returns its number.
+  uint32_t addVertex(const std::array<double, 3>& position, const std::vector<double>& values) {
+    const auto v = static_cast<uint32_t>(positions.size());
+    positions.push_back(position);
+    for (size_t f = 0; f < fields.size(); ++f) fields[f].values.push_back(values[f]);
+    if (!canonical.empty()) canonical.push_back(v);
+    return v;
+  }
+
+  // Adds the tets of one cell (through the weld map, if any) when, leaving
+  // out those with two corners at one vertex, all are positive, or all
+  // negative (then each is flipped, as a left-handed cell needs). False, and
+  // nothing added, when one is flat or their orientations differ: the cut
+  // does not fit the cell, and its tets would overlap.
+  bool addCell(const std::array<uint32_t, 4>* cell_tets, size_t count) {
+    std::array<uint32_t, 4> kept[16];
+    size_t n = 0;
+    int cell_sign = 0;
+    uint64_t dropped = 0;
+    for (size_t t = 0; t < count; ++t) {
+      std::array<uint32_t, 4> tet = cell_tets[t];
+      if (!canonical.empty())
+        for (uint32_t& v : tet) v = canonical[v];
+      if (tet[0] == tet[1] || tet[0] == tet[2] || tet[0] == tet[3] || tet[1] == tet[2] ||
+          tet[1] == tet[3] || tet[2] == tet[3]) {
+        ++dropped;
+        continue;
+      }
+      int sign =
+          orient3dSign(positions[tet[0]], positions[tet[1]], positions[tet[2]], positions[tet[3]]);
+      if (sign == 0 || (cell_sign != 0 && sign != cell_sign) || n == 16) return false;
+      cell_sign = sign;
+      kept[n++] = tet;
+    }
+    for (size_t t = 0; t < n; ++t) {
+      if (cell_sign < 0) std::swap(kept[t][2], kept[t][3]);
+      tets.push_back(kept[t]);
+    }
+    if (cell_sign < 0) flipped += n;
+    collapsed += dropped;
+    return true;
+  }
+
   // Moves the result into `mesh`, dropping vertices no tet uses.
   void finish(TetMesh* mesh) {
     std::vector<uint32_t> remap(positions.size(), UINT32_MAX);
