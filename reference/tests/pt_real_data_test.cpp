@@ -45,11 +45,11 @@ TetMesh readTets(const std::string& name) {
   return mesh;
 }
 
-TetMesh bluntFin() {
+// A single-grid PLOT3D pair as 5 tets per hexahedron, the density as the field.
+TetMesh plot3dDensity(const std::string& name) {
   Plot3dData data;
   std::string error;
-  EXPECT_TRUE(readPlot3d(kTetData + "bluntfin_plot3d_40x32x32_f32be.xyz",
-                         kTetData + "bluntfin_plot3d_40x32x32_f32be.q", &data, &error))
+  EXPECT_TRUE(readPlot3d(kTetData + name + ".xyz", kTetData + name + ".q", &data, &error))
       << error;
   TetMesh mesh;
   TetBuildReport report;
@@ -146,7 +146,10 @@ void checkEveryBatchLevel(const std::string& name, const TetMesh& mesh) {
 TEST(PtRealData, CtHeadCrop) { checkEveryBatchLevel("CT head 32^3", ctCrop()); }
 TEST(PtRealData, Bunny) { checkEveryBatchLevel("bunny", readTets("bunny_5433v_34055tet.mesh")); }
 TEST(PtRealData, Hand) { checkEveryBatchLevel("hand", readTets("hand_7234v_29998tet.mesh")); }
-TEST(PtRealData, BluntFin) { checkEveryBatchLevel("blunt fin", bluntFin()); }
+TEST(PtRealData, BluntFin) { checkEveryBatchLevel("blunt fin", plot3dDensity("bluntfin_plot3d_40x32x32_f32be")); }
+TEST(PtRealData, CombustionChamber) {
+  checkEveryBatchLevel("combustion chamber", plot3dDensity("combustion_chamber_plot3d_57x33x25_f32be"));
+}
 
 }  // namespace
 }  // namespace mrsv

@@ -447,7 +447,7 @@ TEST(TetsFromData, Plot3dGivesTheClassicTetCounts) {
   // Combustion chamber: 5 * 56 * 32 * 24 = 215,040 for a 5-tet cut. Two
   // hexahedra, (39, 0, 0) and (39, 31, 0), are too distorted for it (a corner
   // tet comes out negative); each is cut into 6 tets from its corner 5 or 7,
-  // the one corner whose cut is positive (D44): 215,042.
+  // the one corner whose cut is positive (D45): 215,042.
   TetMesh chamber = plot3dMesh("combustion_chamber_plot3d_57x33x25_f32be.xyz",
                                "combustion_chamber_plot3d_57x33x25_f32be.q", &report);
   EXPECT_EQ(chamber.tets.size(), 215040u + 2);
@@ -482,7 +482,7 @@ TEST(TetsFromData, Plot3dGivesTheClassicTetCounts) {
 }
 
 // Every real PLOT3D grid gives a 3-manifold of positive tets, which the
-// progressive encoder needs (before D44 the chamber had 4 folded faces and
+// progressive encoder needs (before D45 the chamber had 4 folded faces and
 // each of the LOX post's 1,444 seam vertices an annulus for a link).
 TEST(TetsFromData, Plot3dMeshesAreManifoldsOfPositiveTets) {
   const char* const kGrids[][2] = {

@@ -201,7 +201,7 @@ bool readPlot3dBytes(const std::string& xyz_name, const uint8_t* xyz, size_t xyz
 // (the blunt fin: 39 at k = 0) and seams (the LOX post's O-grid: 1,444), and
 // without the weld those would be zero-volume tets and slits. A tet with two
 // corners welded together has no volume and is dropped (counted). Where the
-// 5-tet cut does not fit (decision D44) a hexahedron is cut differently, each
+// 5-tet cut does not fit (decision D45) a hexahedron is cut differently, each
 // face still along the diagonal its neighbour uses: a face that a weld makes
 // common to two hexahedra that are not grid neighbours (a seam whose ring of
 // hexahedra has an odd count, where the parity does not alternate) takes the

@@ -1,7 +1,7 @@
 // PLOT3D single-block 3-D grids and solutions (binary, float32, no Fortran
 // record markers: the layout VTK's vtkMultiBlockPLOT3DReader reads by
 // default), and their tetrahedralization with 5 tets per hexahedron (6 or 12
-// where 5 do not fit: decision D44).
+// where 5 do not fit: decision D45).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
