@@ -173,11 +173,16 @@ void runMesh(const std::string& name, bool peer, uint64_t samples) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   ProgressiveTetMesh& pt = d.mesh;
   for (double fraction : {0.5, 0.2, 0.1, 0.05}) {
-    pt.setLevel(pt.splitsDecoded());
+    // Reaching the level from the finest, best of 3 (the machine is shared).
     const uint64_t target = static_cast<uint64_t>(fraction * mesh.tets.size());
+    double reach = 1e9;
+    for (int i = 0; i < 3; ++i) {
+      pt.setLevel(pt.splitsDecoded());
+      auto start = Clock::now();
+      pt.setLevel(pt.finestLevelWithin(target));
+      reach = std::min(reach, seconds(start, Clock::now()));
+    }
     auto a = Clock::now();
-    pt.setLevel(pt.finestLevelWithin(target));
-    const double reach = seconds(a, Clock::now());
     TetSimplifyOptions rebuild_options;
     rebuild_options.min_base_tets = pt.tetCount();
     TetSimplifyResult rebuilt;
