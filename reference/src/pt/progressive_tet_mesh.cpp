@@ -21,7 +21,7 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(uint32_t vs, bool closed) {
   for (uint32_t local : walk_local) walk_global.push_back(link.vertices[local]);
   mesh.incident.emplace_back();
   std::string problem = applySplit(&mesh, vs, vt, walk_global.data(), static_cast<uint32_t>(walk_global.size()),
-                                   closed, region.data(), static_cast<uint32_t>(region.size()), &scratch);
+                                   closed, region.data(), static_cast<uint32_t>(region.size()));
   if (!problem.empty()) {
     mesh.incident.pop_back();
     return problem;
@@ -44,8 +44,7 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(uint32_t vs, bool closed) {
 void ProgressiveTetMesh::Impl::redo(uint32_t k) {
   const PtSplitRecord& r = splits[k];
   const uint32_t vt = header.base_vertex_count + k;
-  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count,
-             &scratch);
+  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
 }
 
 void ProgressiveTetMesh::Impl::undo(uint32_t k) {

@@ -65,7 +65,7 @@ Tet replaced(Tet t, uint32_t from, uint32_t to) {
 }  // namespace
 
 std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
-                       bool closed, const uint32_t* moved, uint32_t moved_count, SplitScratch* scratch) {
+                       bool closed, const uint32_t* moved, uint32_t moved_count) {
   const uint32_t edges = cutEdgeCount(walk_length, closed);
   for (uint32_t i = 0; i < moved_count; ++i)
     if (mesh->orientation(replaced(mesh->tets[moved[i]], vs, vt)) <= 0)
@@ -80,12 +80,14 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
   std::vector<uint32_t>& star_vt = mesh->incident[vt];
   star_vt.assign(moved, moved + moved_count);
   for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
-  // vs keeps the tets that did not move.
-  scratch->sorted.assign(moved, moved + moved_count);
-  std::sort(scratch->sorted.begin(), scratch->sorted.end());
+  // vs keeps the tets that did not move: those that still have vs as a
+  // corner (a moved tet has vt in its place now, and no tet repeats a
+  // corner). The order of the rest is kept.
+  const std::vector<Tet>& tets = mesh->tets;
   star_vs.erase(std::remove_if(star_vs.begin(), star_vs.end(),
                                [&](uint32_t t) {
-                                 return std::binary_search(scratch->sorted.begin(), scratch->sorted.end(), t);
+                                 const Tet& k = tets[t];
+                                 return k[0] != vs && k[1] != vs && k[2] != vs && k[3] != vs;
                                }),
                 star_vs.end());
   for (uint32_t i = 0; i < edges; ++i) {
