@@ -20,6 +20,12 @@ int64_t Link::triangleFrom(uint32_t p, uint32_t q) const {
   return -1;
 }
 
+uint32_t Link::lowestNeighbour(uint32_t p) const {
+  uint32_t lowest = UINT32_MAX;
+  for (uint32_t k = corner_begin[p]; k < corner_begin[p + 1]; ++k) lowest = std::min(lowest, corners[k][0]);
+  return lowest;
+}
+
 uint32_t Link::localIndex(uint32_t vertex) const {
   auto it = std::lower_bound(vertices.begin(), vertices.end(), vertex);
   return it != vertices.end() && *it == vertex ? static_cast<uint32_t>(it - vertices.begin())

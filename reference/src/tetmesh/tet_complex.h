@@ -47,6 +47,8 @@ struct Link {
   // triangles around p do not form one fan (the link is not a manifold).
   bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
   uint32_t localIndex(uint32_t vertex) const;  // vertices.size() when absent
+  // The smallest link neighbour q of p with a triangle (p, q, ...).
+  uint32_t lowestNeighbour(uint32_t p) const;
 
   // Scratch of buildLink(): per vertex number, its local index while its
   // stamp is the current one (no sort or search per corner).

@@ -5,8 +5,11 @@
 
 namespace mrsv {
 
-std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
-                        SplitScratch* s, std::vector<uint32_t>* region_tets) {
+namespace {
+
+template <class LinkT>
+std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* s,
+                     std::vector<uint32_t>* region_tets) {
   const uint32_t m = static_cast<uint32_t>(link.vertices.size());
   const uint32_t k = static_cast<uint32_t>(walk.size());
   s->walk_position.assign(m, 0);
@@ -52,6 +55,18 @@ std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, boo
   region_tets->clear();
   for (uint32_t f : s->queue) region_tets->push_back(link.triangle_tet[f]);
   return "";
+}
+
+}  // namespace
+
+std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* scratch,
+                        std::vector<uint32_t>* region_tets) {
+  return regionOf(link, walk, closed, scratch, region_tets);
+}
+
+std::string splitRegion(const StarLink& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* scratch,
+                        std::vector<uint32_t>* region_tets) {
+  return regionOf(link, walk, closed, scratch, region_tets);
 }
 
 namespace {

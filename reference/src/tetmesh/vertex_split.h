@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tetmesh/star_link.h"
 #include "tetmesh/tet_complex.h"
 
 namespace mrsv {
@@ -28,6 +29,8 @@ struct SplitScratch {
 // spec 7.6.3: the tet slots of the link triangles on the sweep side of the
 // walk (local vertices; `closed` for a cycle). Returns "" or the rule broken.
 std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
+                        SplitScratch* scratch, std::vector<uint32_t>* region_tets);
+std::string splitRegion(const StarLink& link, const std::vector<uint32_t>& walk, bool closed,
                         SplitScratch* scratch, std::vector<uint32_t>* region_tets);
 
 // spec 7.6.4: splits vs, whose new vertex vt already has its position and
