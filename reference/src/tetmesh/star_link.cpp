@@ -111,7 +111,23 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
 }
 
 uint32_t StarLink::lowestNeighbour(uint32_t p) const {
-  uint32_t lowest = UINT32_MAX;
+  // Around an interior p (where cut() asks) its neighbours form one cycle of
+  // next(p, .): from the first neighbour found, follow it. Should it break,
+  // every triangle through p is looked at instead.
+  uint32_t first = UINT32_MAX;
+  for (uint32_t f = 0; f < triangles.size() && first == UINT32_MAX; ++f)
+    for (int j = 0; j < 3; ++j)
+      if (triangles[f][j] == p) first = triangles[f][(j + 1) % 3];
+  if (first == UINT32_MAX) return first;
+  uint32_t lowest = first;
+  for (uint32_t x = first, steps = 0; steps < vertices.size(); ++steps) {
+    const uint32_t e = find(p, x);
+    if (e == kNone) break;
+    x = thirdOf(e);
+    if (x == first) return lowest;
+    lowest = std::min(lowest, x);
+  }
+  lowest = UINT32_MAX;
   for (const auto& tri : triangles)
     for (int j = 0; j < 3; ++j)
       if (tri[j] == p) lowest = std::min(lowest, tri[(j + 1) % 3]);
