@@ -8,9 +8,10 @@
 // directed edges in a table instead and follows them on demand: next(p, x)
 // is one lookup. Links of up to 64 vertices (all but a few in practice: the
 // CT crop's mean is 17) index a 64 x 64 table whose entries carry the
-// build's stamp, so nothing is cleared between splits; larger ones hash. Its members and methods answer as Link's do
-// (local vertex numbers, the same triangle order), so the coding templates
-// and splitRegion() run on either.
+// build's stamp, so nothing is cleared between splits; larger ones hash.
+// Its members and methods answer as Link's do (local vertex numbers, the
+// same triangle order), so the coding templates and splitRegion() run on
+// either.
 //
 // One shortcut rests on spec 7.3 (every level is a manifold whose vertex
 // links are spheres or disks): a link with F = 2m - 4 triangles on m
@@ -82,7 +83,7 @@ struct StarLink {
   std::vector<uint32_t> edge_triangle_;
   std::vector<uint32_t> edge_third_;
   uint32_t mask_ = 0;
-  int shift_ = 64;
+  int shift_ = 60;  // 64 - log2(capacity), set by build()
   bool dense_used_ = false;
   std::vector<uint32_t> dense_stamp_;  // per a * kDense + b: stamp_ when a -> b is an edge
   std::vector<uint32_t> dense_triangle_;
