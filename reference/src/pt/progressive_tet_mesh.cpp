@@ -14,14 +14,16 @@ std::string ProgressiveTetMesh::Impl::startFromBase() {
   return problem;
 }
 
-std::string ProgressiveTetMesh::Impl::applyNewSplit(uint32_t vs, bool closed) {
+template <class LinkT>
+std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uint32_t vs, bool closed) {
   const uint32_t vt = mesh.vertexCount() - 1;
-  if (std::string problem = splitRegion(link, walk_local, closed, &scratch, &region); !problem.empty()) return problem;
+  if (std::string problem = splitRegion(link_of_vs, walk_local, closed, &scratch, &region); !problem.empty())
+    return problem;
   walk_global.clear();
-  for (uint32_t local : walk_local) walk_global.push_back(link.vertices[local]);
+  for (uint32_t local : walk_local) walk_global.push_back(link_of_vs.vertices[local]);
   mesh.incident.emplace_back();
   std::string problem = applySplit(&mesh, vs, vt, walk_global.data(), static_cast<uint32_t>(walk_global.size()),
-                                   closed, region.data(), static_cast<uint32_t>(region.size()), &scratch);
+                                   closed, region.data(), static_cast<uint32_t>(region.size()));
   if (!problem.empty()) {
     mesh.incident.pop_back();
     return problem;
@@ -41,11 +43,13 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(uint32_t vs, bool closed) {
   return "";
 }
 
+template std::string ProgressiveTetMesh::Impl::applyNewSplit(const Link&, uint32_t, bool);
+template std::string ProgressiveTetMesh::Impl::applyNewSplit(const StarLink&, uint32_t, bool);
+
 void ProgressiveTetMesh::Impl::redo(uint32_t k) {
   const PtSplitRecord& r = splits[k];
   const uint32_t vt = header.base_vertex_count + k;
-  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count,
-             &scratch);
+  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
 }
 
 void ProgressiveTetMesh::Impl::undo(uint32_t k) {

@@ -13,6 +13,7 @@
 #include "bitstream/range_coder_adapter.h"
 #include "mrsv/progressive_tet_mesh.h"
 #include "pm/pm_coding.h"
+#include "tetmesh/star_link.h"
 #include "tetmesh/tet_complex.h"
 #include "tetmesh/vertex_split.h"
 
@@ -91,9 +92,10 @@ inline uint32_t indexIn(const std::vector<uint32_t>& list, uint32_t value) {
 
 // spec 7.7.2 cut(): the walk through the link of vs, as local link vertices.
 // Encoding: `walk` and `closed` hold the cut to code, with its first vertex
-// chosen by the caller. Returns "" or the rule broken.
-template <class Coder>
-std::string codeCut(Coder& coder, PtContexts& ctx, const Link& link, SplitScratch* s, std::vector<uint32_t>* walk,
+// chosen by the caller. LinkT: Link (the encoder) or StarLink (the decoder),
+// which answer alike. Returns "" or the rule broken.
+template <class Coder, class LinkT>
+std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScratch* s, std::vector<uint32_t>* walk,
                     bool* closed) {
   const uint32_t m = static_cast<uint32_t>(link.vertices.size());
   std::vector<uint32_t>& w = *walk;
@@ -113,10 +115,7 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const Link& link, SplitScratc
     if (Coder::kEncoding && c0 >= m) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.cut_start, ctx.escape, &c0)) return "cut_start: length prefix of 31 bits";
     if (c0 >= m) return "cut_start " + std::to_string(c0) + " is not below the link's " + std::to_string(m) + " vertices";
-    uint32_t lowest = UINT32_MAX;
-    for (uint32_t k = link.corner_begin[c0]; k < link.corner_begin[c0 + 1]; ++k)
-      lowest = std::min(lowest, link.corners[k][0]);
-    if (!link.rotation(c0, lowest, &s->rotation)) return "the link is not a manifold at c_0";
+    if (!link.rotation(c0, link.lowestNeighbour(c0), &s->rotation)) return "the link is not a manifold at c_0";
     uint32_t j = Coder::kEncoding ? indexIn(s->rotation, given[1]) : 0;
     if (Coder::kEncoding && (given.size() < 3 || j == s->rotation.size())) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.cut_first[degreeContext(s->rotation.size())], ctx.escape, &j))

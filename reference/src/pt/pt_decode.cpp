@@ -38,15 +38,15 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   const PtHeader& h = s.header;
   if (s.mesh.incident[vs].size() > 3 * size_t{kMaxSplitLinkVertices})
     return "the star of vs has more tets than a link of " + std::to_string(kMaxSplitLinkVertices) + " vertices can hold";
-  s.mesh.buildLink(vs, &s.link);
-  if (s.link.vertices.size() > kMaxSplitLinkVertices)
-    return "the link of vs has " + std::to_string(s.link.vertices.size()) + " vertices, more than " +
+  s.star_link.build(s.mesh, vs);
+  if (s.star_link.vertices.size() > kMaxSplitLinkVertices)
+    return "the link of vs has " + std::to_string(s.star_link.vertices.size()) + " vertices, more than " +
            std::to_string(kMaxSplitLinkVertices);
   bool closed = false;
-  std::string problem = pt::codeCut(coder, ctx, s.link, &s.scratch, &s.walk_local, &closed);
+  std::string problem = pt::codeCut(coder, ctx, s.star_link, &s.scratch, &s.walk_local, &closed);
   if (!problem.empty()) return problem;
   s.walk_global.clear();
-  for (uint32_t local : s.walk_local) s.walk_global.push_back(s.link.vertices[local]);
+  for (uint32_t local : s.walk_local) s.walk_global.push_back(s.star_link.vertices[local]);
   Point3i position{0, 0, 0};
   int32_t values[kMaxTetFields] = {};
   problem = pt::codeSplitValues(coder, ctx, h, s.mesh, vs, s.walk_global.data(),
@@ -57,7 +57,7 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   if (s.mesh.tets.size() + cutEdgeCount(static_cast<uint32_t>(s.walk_global.size()), closed) > h.tet_count)
     problem = "the split would make more tets than tet_count";
   else
-    problem = s.applyNewSplit(vs, closed);
+    problem = s.applyNewSplit(s.star_link, vs, closed);
   if (!problem.empty()) {
     s.mesh.positions.pop_back();
     s.mesh.scalars.resize(s.mesh.scalars.size() - h.fields.size());

@@ -345,7 +345,7 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
       if (problem.empty()) {
         s.mesh.positions.push_back(position);
         s.mesh.scalars.insert(s.mesh.scalars.end(), values, values + fc);
-        problem = s.applyNewSplit(v, closed);
+        problem = s.applyNewSplit(s.link, v, closed);
       }
       if (!problem.empty()) return fail(Status::kInvalidArgument, "collapses", where + ": " + problem);
       ++next;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mrsv/progressive_tet_mesh.h"
+#include "tetmesh/star_link.h"
 #include "tetmesh/tet_complex.h"
 #include "tetmesh/vertex_split.h"
 
@@ -35,7 +36,8 @@ struct ProgressiveTetMesh::Impl {
   uint32_t level = 0;
 
   // Scratch reused by every split.
-  Link link;
+  Link link;          // the encoder's
+  StarLink star_link;  // the decoder's
   SplitScratch scratch;
   std::vector<uint32_t> walk_local;
   std::vector<uint32_t> region;
@@ -46,8 +48,10 @@ struct ProgressiveTetMesh::Impl {
   std::string startFromBase();
   // Applies a new split at the finest level: vt's position and values are
   // appended to the mesh already; the cut is walk_local (of `link`, the link
-  // of vs). Returns "" or the rule broken; on failure vt is removed again.
-  std::string applyNewSplit(uint32_t vs, bool closed);
+  // of vs, a Link or a StarLink). Returns "" or the rule broken; on failure
+  // vt is removed again.
+  template <class LinkT>
+  std::string applyNewSplit(const LinkT& link_of_vs, uint32_t vs, bool closed);
   void redo(uint32_t k);
   void undo(uint32_t k);
 };

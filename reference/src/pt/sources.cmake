@@ -3,6 +3,7 @@
 #   MRSV_PT_ENCODE_SOURCES -> mrsv_encode
 set(MRSV_PT_DECODE_SOURCES
   reference/src/tetmesh/tet_complex.cpp
+  reference/src/tetmesh/star_link.cpp
   reference/src/tetmesh/vertex_split.cpp
   reference/src/pt/pt_header.cpp
   reference/src/pt/progressive_tet_mesh.cpp

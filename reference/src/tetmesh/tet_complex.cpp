@@ -20,6 +20,12 @@ int64_t Link::triangleFrom(uint32_t p, uint32_t q) const {
   return -1;
 }
 
+uint32_t Link::lowestNeighbour(uint32_t p) const {
+  uint32_t lowest = UINT32_MAX;
+  for (uint32_t k = corner_begin[p]; k < corner_begin[p + 1]; ++k) lowest = std::min(lowest, corners[k][0]);
+  return lowest;
+}
+
 uint32_t Link::localIndex(uint32_t vertex) const {
   auto it = std::lower_bound(vertices.begin(), vertices.end(), vertex);
   return it != vertices.end() && *it == vertex ? static_cast<uint32_t>(it - vertices.begin())
@@ -33,7 +39,7 @@ bool Link::rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) cons
   if (deg == 0) return false;
   uint32_t k = UINT32_MAX;
   for (uint32_t j = begin; j < end && k == UINT32_MAX; ++j)
-    if (on_boundary[p] ? !corner_has_pred[j] : corners[j][0] == start) k = j;
+    if (on_boundary[p] ? corner_prev[j] == UINT32_MAX : corners[j][0] == start) k = j;
   if (k == UINT32_MAX) return false;
   out->push_back(corners[k][0]);
   // Around an interior p the corners form one cycle, around a boundary p one path.
@@ -57,81 +63,110 @@ void TetComplex::buildIncidence() {
 }
 
 void TetComplex::buildLink(uint32_t v, Link* link) const {
-  link->center = v;
-  link->vertices.clear();
-  link->triangles.clear();
-  link->triangle_tet.clear();
+  // One pass over the star for the triangles (as vertex numbers) and the
+  // link's vertices, a sort, then the triangles in local numbers and the
+  // corners per local vertex. Every array is sized once and written by
+  // index: at about 30 tets per star, vector growth checks, fills and extra
+  // passes cost more than the work itself (issue 21's profile).
+  Link& l = *link;
+  l.center = v;
   const std::vector<uint32_t>& star = incident[v];
-  if (link->stamp_of.size() < positions.size()) {
-    link->stamp_of.resize(positions.size(), 0);
-    link->local_of.resize(positions.size(), 0);
+  const uint32_t faces = static_cast<uint32_t>(star.size());
+  if (l.stamp_of.size() < positions.size()) {
+    l.stamp_of.resize(positions.size(), 0);
+    l.local_of.resize(positions.size(), 0);
   }
-  if (++link->stamp == 0) {
-    std::fill(link->stamp_of.begin(), link->stamp_of.end(), 0);
-    link->stamp = 1;
+  if (++l.stamp == 0) {
+    std::fill(l.stamp_of.begin(), l.stamp_of.end(), 0);
+    l.stamp = 1;
   }
-  for (uint32_t slot : star)
-    for (uint32_t u : tets[slot])
-      if (u != v && link->stamp_of[u] != link->stamp) {
-        link->stamp_of[u] = link->stamp;
-        link->vertices.push_back(u);
+  l.triangles.resize(faces);
+  l.triangle_tet.assign(star.begin(), star.end());
+  l.vertices.resize(3 * size_t{faces});
+  uint32_t m = 0;
+  {
+    uint32_t* stamp_of = l.stamp_of.data();
+    uint32_t* vertices = l.vertices.data();
+    const uint32_t stamp = l.stamp;
+    for (uint32_t f = 0; f < faces; ++f) {
+      const Tet& t = tets[star[f]];
+      const int at = t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : 3;
+      std::array<uint32_t, 3>& tri = l.triangles[f];
+      for (int j = 0; j < 3; ++j) {
+        const uint32_t u = t[kLinkOrder[at][j]];
+        tri[j] = u;
+        if (stamp_of[u] != stamp) {
+          stamp_of[u] = stamp;
+          vertices[m++] = u;
+        }
       }
-  std::sort(link->vertices.begin(), link->vertices.end());
-  for (uint32_t i = 0; i < link->vertices.size(); ++i) link->local_of[link->vertices[i]] = i;
-  const uint32_t m = static_cast<uint32_t>(link->vertices.size());
-  link->corner_begin.assign(m + 2, 0);
-  for (uint32_t slot : star) {
-    const Tet& t = tets[slot];
-    int at = 0;
-    while (at < 3 && t[at] != v) ++at;
-    std::array<uint32_t, 3> tri;
-    for (int j = 0; j < 3; ++j) tri[j] = link->local_of[t[kLinkOrder[at][j]]];
-    link->triangles.push_back(tri);
-    link->triangle_tet.push_back(slot);
-    for (uint32_t p : tri) ++link->corner_begin[p + 2];
-  }
-  for (uint32_t p = 0; p < m; ++p) link->corner_begin[p + 2] += link->corner_begin[p + 1];
-  link->corners.resize(3 * link->triangles.size());
-  link->triangle_corner.resize(link->triangles.size());
-  for (uint32_t f = 0; f < link->triangles.size(); ++f) {
-    const auto& tri = link->triangles[f];
-    for (int j = 0; j < 3; ++j) {
-      const uint32_t k = link->corner_begin[tri[j] + 1]++;
-      link->corners[k] = {tri[(j + 1) % 3], tri[(j + 2) % 3], f};
-      link->triangle_corner[f][j] = k;
     }
   }
-  link->corner_begin.pop_back();
+  l.vertices.resize(m);
+  std::sort(l.vertices.begin(), l.vertices.end());
+  for (uint32_t i = 0; i < m; ++i) l.local_of[l.vertices[i]] = i;
+  // CSR of the corners per local vertex: counts at p + 2, their prefix sums
+  // at p + 1, then each corner placed by bumping its vertex's cursor.
+  l.corner_begin.assign(m + 2, 0);
+  const uint32_t corner_count = 3 * faces;
+  l.corners.resize(corner_count);
+  l.triangle_corner.resize(faces);
+  l.corner_next.resize(corner_count);
+  l.corner_prev.assign(corner_count, UINT32_MAX);
+  if (l.corner_of_q.size() < m) l.corner_of_q.resize(m);
+  l.on_boundary.assign(m, 0);
+  // The loops below run on raw pointers: through the vectors the compiler
+  // reloads every base pointer after each store.
+  std::array<uint32_t, 3>* triangles = l.triangles.data();
+  uint32_t* begin_of = l.corner_begin.data();
+  const uint32_t* local_of = l.local_of.data();
+  std::array<uint32_t, 3>* corners = l.corners.data();
+  std::array<uint32_t, 3>* triangle_corner = l.triangle_corner.data();
+  uint32_t* next = l.corner_next.data();
+  uint32_t* prev = l.corner_prev.data();
+  uint32_t* corner_of_q = l.corner_of_q.data();
+  uint8_t* on_boundary = l.on_boundary.data();
+  for (uint32_t f = 0; f < faces; ++f)
+    for (uint32_t& p : triangles[f]) {
+      p = local_of[p];
+      ++begin_of[p + 2];
+    }
+  for (uint32_t p = 0; p < m; ++p) begin_of[p + 2] += begin_of[p + 1];
+  for (uint32_t f = 0; f < faces; ++f) {
+    const auto& tri = triangles[f];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t k = begin_of[tri[j] + 1]++;
+      corners[k] = {tri[(j + 1) % 3], tri[(j + 2) % 3], f};
+      triangle_corner[f][j] = k;
+    }
+  }
+  l.corner_begin.pop_back();
   // Around each p: which corner follows which (q -> r, then r -> ...), and
   // which corners nothing leads to (they start the fan of a boundary p).
-  const uint32_t corner_count = static_cast<uint32_t>(link->corners.size());
-  link->corner_next.assign(corner_count, UINT32_MAX);
-  link->corner_prev.assign(corner_count, UINT32_MAX);
-  link->corner_has_pred.assign(corner_count, 0);
-  if (link->corner_of_q.size() < m) link->corner_of_q.resize(m);
-  link->on_boundary.assign(m, 0);
-  link->has_boundary = false;
+  bool has_boundary = false;
   for (uint32_t p = 0; p < m; ++p) {
-    const uint32_t begin = link->corner_begin[p], end = link->corner_begin[p + 1];
-    for (uint32_t k = begin; k < end; ++k) link->corner_of_q[link->corners[k][0]] = UINT32_MAX;
-    for (uint32_t k = begin; k < end; ++k) link->corner_of_q[link->corners[k][0]] = k;
+    const uint32_t begin = begin_of[p], end = begin_of[p + 1];
+    // corner_of_q[q] may be left from an earlier p or link: the range and
+    // the check that the corner starts at q below reject such an entry.
+    for (uint32_t k = begin; k < end; ++k) corner_of_q[corners[k][0]] = k;
     for (uint32_t k = begin; k < end; ++k) {
-      const uint32_t r = link->corners[k][1];
-      // corner_of_q[r] is only meaningful when r starts a corner of p.
-      const uint32_t j = link->corner_of_q[r];
-      if (j >= begin && j < end && link->corners[j][0] == r) {
-        link->corner_next[k] = j;
-        link->corner_prev[j] = k;
-        link->corner_has_pred[j] = 1;
+      const uint32_t r = corners[k][1];
+      const uint32_t j = corner_of_q[r];
+      if (j >= begin && j < end && corners[j][0] == r) {
+        next[k] = j;
+        prev[j] = k;
+      } else {
+        next[k] = UINT32_MAX;
       }
     }
     for (uint32_t k = begin; k < end; ++k)
-      if (!link->corner_has_pred[k]) {
+      if (prev[k] == UINT32_MAX) {
         // The edge p -> q has no triangle on its other side.
-        link->on_boundary[p] = link->on_boundary[link->corners[k][0]] = 1;
-        link->has_boundary = true;
+        on_boundary[p] = on_boundary[corners[k][0]] = 1;
+        has_boundary = true;
       }
   }
+  l.has_boundary = has_boundary;
 }
 
 std::string checkLinkIsSphereOrDisk(const Link& link) {

@@ -27,7 +27,6 @@ struct Link {
   std::vector<std::array<uint32_t, 3>> corners;    // (q, r, triangle) for local vertex p's triangle (p, q, r)
   std::vector<uint32_t> corner_next;               // the corner of p starting where corner k ends, or UINT32_MAX
   std::vector<uint32_t> corner_prev;               // the corner of p ending where corner k starts, or UINT32_MAX
-  std::vector<uint8_t> corner_has_pred;            // some corner of p ends where corner k starts
   std::vector<std::array<uint32_t, 3>> triangle_corner;  // the corner of each triangle at its j-th vertex
   std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
   bool has_boundary = false;
@@ -48,6 +47,8 @@ struct Link {
   // triangles around p do not form one fan (the link is not a manifold).
   bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
   uint32_t localIndex(uint32_t vertex) const;  // vertices.size() when absent
+  // The smallest link neighbour q of p with a triangle (p, q, ...).
+  uint32_t lowestNeighbour(uint32_t p) const;
 
   // Scratch of buildLink(): per vertex number, its local index while its
   // stamp is the current one (no sort or search per corner).

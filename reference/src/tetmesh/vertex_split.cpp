@@ -5,8 +5,11 @@
 
 namespace mrsv {
 
-std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
-                        SplitScratch* s, std::vector<uint32_t>* region_tets) {
+namespace {
+
+template <class LinkT>
+std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* s,
+                     std::vector<uint32_t>* region_tets) {
   const uint32_t m = static_cast<uint32_t>(link.vertices.size());
   const uint32_t k = static_cast<uint32_t>(walk.size());
   s->walk_position.assign(m, 0);
@@ -54,6 +57,18 @@ std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, boo
   return "";
 }
 
+}  // namespace
+
+std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* scratch,
+                        std::vector<uint32_t>* region_tets) {
+  return regionOf(link, walk, closed, scratch, region_tets);
+}
+
+std::string splitRegion(const StarLink& link, const std::vector<uint32_t>& walk, bool closed, SplitScratch* scratch,
+                        std::vector<uint32_t>* region_tets) {
+  return regionOf(link, walk, closed, scratch, region_tets);
+}
+
 namespace {
 
 Tet replaced(Tet t, uint32_t from, uint32_t to) {
@@ -65,7 +80,7 @@ Tet replaced(Tet t, uint32_t from, uint32_t to) {
 }  // namespace
 
 std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
-                       bool closed, const uint32_t* moved, uint32_t moved_count, SplitScratch* scratch) {
+                       bool closed, const uint32_t* moved, uint32_t moved_count) {
   const uint32_t edges = cutEdgeCount(walk_length, closed);
   for (uint32_t i = 0; i < moved_count; ++i)
     if (mesh->orientation(replaced(mesh->tets[moved[i]], vs, vt)) <= 0)
@@ -80,12 +95,14 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
   std::vector<uint32_t>& star_vt = mesh->incident[vt];
   star_vt.assign(moved, moved + moved_count);
   for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
-  // vs keeps the tets that did not move.
-  scratch->sorted.assign(moved, moved + moved_count);
-  std::sort(scratch->sorted.begin(), scratch->sorted.end());
+  // vs keeps the tets that did not move: those that still have vs as a
+  // corner (a moved tet has vt in its place now, and no tet repeats a
+  // corner). The order of the rest is kept.
+  const std::vector<Tet>& tets = mesh->tets;
   star_vs.erase(std::remove_if(star_vs.begin(), star_vs.end(),
                                [&](uint32_t t) {
-                                 return std::binary_search(scratch->sorted.begin(), scratch->sorted.end(), t);
+                                 const Tet& k = tets[t];
+                                 return k[0] != vs && k[1] != vs && k[2] != vs && k[3] != vs;
                                }),
                 star_vs.end());
   for (uint32_t i = 0; i < edges; ++i) {

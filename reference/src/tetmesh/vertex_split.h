@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tetmesh/star_link.h"
 #include "tetmesh/tet_complex.h"
 
 namespace mrsv {
@@ -23,12 +24,13 @@ struct SplitScratch {
   std::vector<uint32_t> walk_position;  // per local vertex: 1 + index in the walk, 0 if not on it
   std::vector<uint8_t> triangle_side;   // per link triangle: 0 unknown, 1 vt's, 2 vs's
   std::vector<uint32_t> queue;
-  std::vector<uint32_t> sorted;
 };
 
 // spec 7.6.3: the tet slots of the link triangles on the sweep side of the
 // walk (local vertices; `closed` for a cycle). Returns "" or the rule broken.
 std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, bool closed,
+                        SplitScratch* scratch, std::vector<uint32_t>* region_tets);
+std::string splitRegion(const StarLink& link, const std::vector<uint32_t>& walk, bool closed,
                         SplitScratch* scratch, std::vector<uint32_t>* region_tets);
 
 // spec 7.6.4: splits vs, whose new vertex vt already has its position and
@@ -36,7 +38,7 @@ std::string splitRegion(const Link& link, const std::vector<uint32_t>& walk, boo
 // vertex numbers. Checks every changed and new tet for orientation first and
 // changes nothing when one is not positive. Returns "" or the rule broken.
 std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
-                       bool closed, const uint32_t* moved, uint32_t moved_count, SplitScratch* scratch);
+                       bool closed, const uint32_t* moved, uint32_t moved_count);
 
 // The exact inverse of the last applySplit still in effect.
 void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,

@@ -1,0 +1,97 @@
+// The link of a vertex as a PT decoder walks it: only what cut() and the
+// region need (spec 7.6.1 to 7.6.3), built in a few passes over the star.
+// spec: 7.6.1 (links, rotation), 7.6.3 (the region's steps across edges).
+//
+// Link (tet_complex.h) builds every rotation of every link vertex up front
+// for the manifold checks of 7.4 and the encoder. A decoded split visits the
+// rotations of only its cut's few vertices, so StarLink keeps the link's
+// directed edges in a table instead and follows them on demand: next(p, x)
+// is one lookup. Links of up to 64 vertices (all but a few in practice: the
+// CT crop's mean is 17) index a 64 x 64 table whose entries carry the
+// build's stamp, so nothing is cleared between splits; larger ones hash.
+// Its members and methods answer as Link's do (local vertex numbers, the
+// same triangle order), so the coding templates and splitRegion() run on
+// either.
+//
+// One shortcut rests on spec 7.3 (every level is a manifold whose vertex
+// links are spheres or disks): a link with F = 2m - 4 triangles on m
+// vertices is a sphere and has no boundary edge (a disk has F = 2m - 2 - B,
+// B >= 3 boundary edges). Other links are scanned edge by edge, as Link does.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tetmesh/tet_complex.h"
+
+namespace mrsv {
+
+struct StarLink {
+  uint32_t center = 0;
+  std::vector<uint32_t> vertices;                  // ascending vertex numbers
+  std::vector<std::array<uint32_t, 3>> triangles;  // local indices, Link's order
+  std::vector<uint32_t> triangle_tet;              // the tet slot of each triangle
+  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
+  bool has_boundary = false;
+
+  // The triangle holding the directed edge a -> b (written (a, b, ...)), or -1.
+  int64_t triangleFrom(uint32_t a, uint32_t b) const {
+    const uint32_t e = find(a, b);
+    return e == kNone ? -1 : static_cast<int64_t>(triangleOf(e));
+  }
+  // The triangle across the edge from triangle f's j-th vertex to its next
+  // one (it holds that edge reversed), or -1 on the link's boundary.
+  int64_t across(uint32_t f, int j) const { return triangleFrom(triangles[f][(j + 1) % 3], triangles[f][j]); }
+  // As Link::rotation (spec 7.6.1): p's neighbours in order around it from
+  // `start`, or from the start of the fan when p is a boundary vertex.
+  bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
+  // The smallest link neighbour of p (cut()'s start of c_0's rotation).
+  uint32_t lowestNeighbour(uint32_t p) const;
+
+  // Builds the link of v in `mesh` (its incidence lists), reusing storage.
+  void build(const TetComplex& mesh, uint32_t v);
+
+ private:
+  static constexpr uint32_t kNone = UINT32_MAX;
+  static constexpr uint32_t kDense = 64;  // links of at most this many vertices use dense_
+  uint32_t find(uint32_t a, uint32_t b) const {
+    if (dense_used_) {
+      const uint32_t e = a * kDense + b;
+      return dense_stamp_[e] == stamp_ ? e : kNone;
+    }
+    return findHashed(a, b);
+  }
+  // Open addressing over the directed edges a -> b, keyed a * 2^32 + b.
+  uint32_t findHashed(uint32_t a, uint32_t b) const {
+    const uint64_t key = (uint64_t{a} << 32) | b;
+    for (uint32_t e = slotOf(key);; e = (e + 1) & mask_) {
+      if (edge_key_[e] == key) return e;
+      if (edge_key_[e] == kEmpty) return kNone;
+    }
+  }
+  uint32_t slotOf(uint64_t key) const {
+    return static_cast<uint32_t>((key * 0x9E3779B97F4A7C15ull) >> shift_) & mask_;
+  }
+  // The vertex after b in the triangle holding a -> b: next(a, b) of 7.6.1.
+  uint32_t thirdOf(uint32_t e) const { return dense_used_ ? dense_third_[e] : edge_third_[e]; }
+  uint32_t triangleOf(uint32_t e) const { return dense_used_ ? dense_triangle_[e] : edge_triangle_[e]; }
+  void insert(uint32_t a, uint32_t b, uint32_t third, uint32_t f);
+
+  static constexpr uint64_t kEmpty = UINT64_MAX;
+  std::vector<uint64_t> edge_key_;
+  std::vector<uint32_t> edge_triangle_;
+  std::vector<uint32_t> edge_third_;
+  uint32_t mask_ = 0;
+  int shift_ = 60;  // 64 - log2(capacity), set by build()
+  bool dense_used_ = false;
+  std::vector<uint32_t> dense_stamp_;  // per a * kDense + b: stamp_ when a -> b is an edge
+  std::vector<uint32_t> dense_triangle_;
+  std::vector<uint32_t> dense_third_;
+  // Scratch of build(): per vertex number, its local index while its stamp
+  // is the current one.
+  std::vector<uint32_t> local_of_, stamp_of_;
+  uint32_t stamp_ = 0;
+};
+
+}  // namespace mrsv
