@@ -37,9 +37,12 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   center = v;
   const std::vector<uint32_t>& star = mesh.incident[v];
   const uint32_t faces = static_cast<uint32_t>(star.size());
+  // The decoder adds a vertex per split: grown by half at a time, the
+  // tables are not resized (and their new entries filled) at every split.
   if (stamp_of_.size() < mesh.positions.size()) {
-    stamp_of_.resize(mesh.positions.size(), 0);
-    local_of_.resize(mesh.positions.size(), 0);
+    const size_t size = std::max(mesh.positions.size(), stamp_of_.size() + stamp_of_.size() / 2);
+    stamp_of_.resize(size, 0);
+    local_of_.resize(size, 0);
   }
   if (dense_stamp_.empty()) {
     dense_stamp_.assign(kDense * kDense, 0);
