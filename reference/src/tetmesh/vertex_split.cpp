@@ -21,8 +21,14 @@ std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool 
     const uint32_t d = pa > pb ? pa - pb : pb - pa;
     return d == 1 || (closed && d == k - 1);
   };
-  s->triangle_side.assign(link.triangles.size(), 0);
-  s->queue.clear();
+  // The queue holds each triangle at most once (when its side turns from 0
+  // to 1): sized to the triangle count up front and written by index, as
+  // push_back's capacity checks and calls cost a sixth of the flood.
+  const size_t faces = link.triangles.size();
+  s->triangle_side.assign(faces, 0);
+  s->queue.resize(faces);
+  uint32_t* queue = s->queue.data();
+  uint32_t tail = 0;
   const uint32_t edges = cutEdgeCount(k, closed);
   for (uint32_t i = 0; i < edges; ++i) {
     const uint32_t a = walk[i], b = walk[(i + 1) % k];
@@ -34,7 +40,7 @@ std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool 
     s->triangle_side[vs_side] = 2;
     if (s->triangle_side[vt_side] == 0) {
       s->triangle_side[vt_side] = 1;
-      s->queue.push_back(static_cast<uint32_t>(vt_side));
+      queue[tail++] = static_cast<uint32_t>(vt_side);
     }
   }
   // Steps from triangle f across its edge from corner j to corner j + 1
@@ -47,18 +53,19 @@ std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool 
     if (s->triangle_side[g] == 2) return false;
     if (s->triangle_side[g] == 0) {
       s->triangle_side[g] = 1;
-      s->queue.push_back(static_cast<uint32_t>(g));
+      queue[tail++] = static_cast<uint32_t>(g);
     }
     return true;
   };
-  for (size_t q = 0; q < s->queue.size(); ++q) {
-    const uint32_t f = s->queue[q];
+  for (uint32_t q = 0; q < tail; ++q) {
+    const uint32_t f = queue[q];
     const auto tri = link.triangles[f];
     if (!step(f, 0, tri[0], tri[1]) || !step(f, 1, tri[1], tri[2]) || !step(f, 2, tri[2], tri[0]))
       return "the cut does not separate the link";
   }
-  region_tets->clear();
-  for (uint32_t f : s->queue) region_tets->push_back(link.triangle_tet[f]);
+  s->queue.resize(tail);
+  region_tets->resize(tail);
+  for (uint32_t q = 0; q < tail; ++q) (*region_tets)[q] = link.triangle_tet[queue[q]];
   return "";
 }
 
