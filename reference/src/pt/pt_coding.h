@@ -221,6 +221,7 @@ std::string codeBaseMesh(Coder& coder, PtContexts& ctx, const PtHeader& h, TetCo
   const int fc = static_cast<int>(h.fields.size());
   if (!Coder::kEncoding) {
     mesh->field_count = fc;
+    mesh->position_bits = h.position_bits;  // every coordinate below is checked against it
     mesh->positions.assign(h.base_vertex_count, Point3i{0, 0, 0});
     mesh->scalars.assign(size_t{h.base_vertex_count} * fc, 0);
     mesh->tets.assign(h.base_tet_count, Tet{0, 0, 0, 0});

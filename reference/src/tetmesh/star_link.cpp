@@ -37,9 +37,12 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   center = v;
   const std::vector<uint32_t>& star = mesh.incident[v];
   const uint32_t faces = static_cast<uint32_t>(star.size());
+  // The decoder adds a vertex per split: grown by half at a time, the
+  // tables are not resized (and their new entries filled) at every split.
   if (stamp_of_.size() < mesh.positions.size()) {
-    stamp_of_.resize(mesh.positions.size(), 0);
-    local_of_.resize(mesh.positions.size(), 0);
+    const size_t size = std::max(mesh.positions.size(), stamp_of_.size() + stamp_of_.size() / 2);
+    stamp_of_.resize(size, 0);
+    local_of_.resize(size, 0);
   }
   if (dense_stamp_.empty()) {
     dense_stamp_.assign(kDense * kDense, 0);
@@ -55,7 +58,10 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   // local numbers (7.6.1), as Link builds them.
   triangles.resize(faces);
   triangle_tet.assign(star.begin(), star.end());
-  vertices.resize(3 * size_t{faces});
+  // Collected in gathered_, which only grows: resizing `vertices` up to
+  // 3 * faces and back down at every split filled it each time.
+  if (gathered_.size() < 3 * size_t{faces}) gathered_.resize(3 * size_t{faces});
+  uint32_t* gathered = gathered_.data();
   uint32_t m = 0;
   for (uint32_t f = 0; f < faces; ++f) {
     const Tet& t = mesh.tets[star[f]];
@@ -65,11 +71,11 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
       triangles[f][j] = u;
       if (stamp_of_[u] != stamp_) {
         stamp_of_[u] = stamp_;
-        vertices[m++] = u;
+        gathered[m++] = u;
       }
     }
   }
-  vertices.resize(m);
+  vertices.assign(gathered, gathered + m);
   std::sort(vertices.begin(), vertices.end());
   for (uint32_t i = 0; i < m; ++i) local_of_[vertices[i]] = i;
   // The directed edges: dense_ for small links, else a hash table at most

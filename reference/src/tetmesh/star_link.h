@@ -91,6 +91,7 @@ struct StarLink {
   // Scratch of build(): per vertex number, its local index while its stamp
   // is the current one.
   std::vector<uint32_t> local_of_, stamp_of_;
+  std::vector<uint32_t> gathered_;  // the link's vertices in the order first met
   uint32_t stamp_ = 0;
 };
 

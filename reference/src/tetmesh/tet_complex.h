@@ -64,10 +64,16 @@ class TetComplex {
   std::vector<int32_t> scalars;  // field_count per vertex
   std::vector<Tet> tets;
   std::vector<std::vector<uint32_t>> incident;  // the tet slots of each vertex
+  // Every coordinate is in [0, 2^position_bits): set by a PT decoder, which
+  // checks each decoded coordinate against it. At 20 or less orientation()
+  // skips orient3d's per-call test of the 64-bit bound (issue 21's profile:
+  // ~19 tests per split).
+  int position_bits = 30;
 
   uint32_t vertexCount() const { return static_cast<uint32_t>(positions.size()); }
   int orientation(const Tet& t) const {
-    return orient3d(positions[t[0]], positions[t[1]], positions[t[2]], positions[t[3]]);
+    const Point3i &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]], &d = positions[t[3]];
+    return position_bits <= 20 ? orient3dBelow2to20(a, b, c, d) : orient3d(a, b, c, d);
   }
   // Builds `incident` from `tets` for the first `vertex_count` vertices.
   void buildIncidence();
