@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -83,7 +84,8 @@ size_t xzBytes(const QuantizedTets& q) {
   }
   for (const Tet& t : q.tets)
     for (uint32_t v : t) put(v, 4);
-  char path[] = "/tmp/pt_bench_XXXXXX";
+  std::string temp = (std::filesystem::temp_directory_path() / "pt_bench_XXXXXX").string();
+  char* path = temp.data();
   const int fd = mkstemp(path);
   if (fd < 0) return 0;
   FILE* f = fdopen(fd, "wb");

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace mrsv::cli {
 namespace {
@@ -84,6 +86,12 @@ bool parseUint64(const std::string& text, uint64_t* out) {
     return false;
   *out = std::stoull(text);
   return true;
+}
+
+bool parseDouble(const std::string& text, double* out) {
+  char* end = nullptr;
+  *out = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(*out);
 }
 
 Progress::Progress(const char* label, bool quiet)

@@ -47,6 +47,8 @@ int fail(const char* command, const std::string& message, int exit_code);
 
 // Parses a whole non-negative decimal number; false when not one.
 bool parseUint64(const std::string& text, uint64_t* out);
+// A finite number written whole (strtod syntax), e.g. "0.5", "1e-3".
+bool parseDouble(const std::string& text, double* out);
 
 // `s` as a JSON string literal, quotes included.
 std::string jsonString(const std::string& s);

@@ -60,12 +60,6 @@ const char kEncodeHelp[] =
     "\n"
     "Exit status: 0 done, 1 invalid input, 2 usage error, 3 file error.\n";
 
-bool parseDouble(const std::string& text, double* out) {
-  char* end = nullptr;
-  *out = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(*out);
-}
-
 }  // namespace
 
 bool isMeshEncode(int argc, char** argv) {

@@ -46,12 +46,6 @@ const char kEncodeHelp[] =
     "\n"
     "Exit status: 0 done, 1 invalid input, 2 usage error, 3 file error.\n";
 
-bool parseDouble(const std::string& text, double* out) {
-  char* end = nullptr;
-  *out = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(*out);
-}
-
 bool parseWeights(const std::string& text, double* w, int n) {
   size_t at = 0;
   for (int i = 0; i < n; ++i) {

@@ -5,22 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/file_extension.h"
 #include "io/tet_format_codecs.h"
 #include "mrsv/file_io.h"
 
 namespace mrsv {
 namespace {
-
-bool hasExtension(const std::string& path, const char* extension) {
-  const size_t n = std::char_traits<char>::length(extension);
-  if (path.size() < n) return false;
-  for (size_t i = 0; i < n; ++i) {
-    char c = path[path.size() - n + i];
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    if (c != extension[i]) return false;
-  }
-  return true;
-}
 
 std::string withoutExtension(const std::string& path) {
   size_t dot = path.find_last_of('.');

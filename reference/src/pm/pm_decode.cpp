@@ -3,6 +3,7 @@
 #include <new>
 #include <string>
 
+#include "bitstream/coded_payload.h"
 #include "common/byte_reader.h"
 #include "pm/pm_records.h"
 
@@ -37,16 +38,6 @@ uint64_t splitsToReserve(const Container& c, const PmHeader& h) {
   for (const ChunkView& chunk : c.chunks)
     if (chunk.chunk_type == kChunkSplits) coded_bytes += chunk.chunk_length;
   return std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_bytes);
-}
-
-// A coded payload decodes to exactly its bytes (spec 5.6, as for grids).
-Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, const std::string& field) {
-  if (rc.overrun() != 0)
-    return Error{Status::kBadEntropyPayload, offset, field, "coded data ends before the records do"};
-  if (rc.consumed() != size)
-    return Error{Status::kBadEntropyPayload, offset, field,
-                 std::to_string(size - rc.consumed()) + " bytes of coded data left over"};
-  return {};
 }
 
 Error decodeChunks(DecodedMesh* out) {

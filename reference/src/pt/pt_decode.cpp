@@ -3,6 +3,7 @@
 #include <new>
 #include <string>
 
+#include "bitstream/coded_payload.h"
 #include "common/byte_reader.h"
 #include "pt/pt_coding.h"
 #include "pt/pt_state.h"
@@ -22,15 +23,6 @@ namespace {
 uint64_t memoryNeeded(const PtHeader& h) {
   return uint64_t{h.vertex_count} * (12 + 4 * h.fields.size() + 24) + uint64_t{h.tet_count} * (16 + 16) +
          uint64_t{h.splitCount()} * (sizeof(PtSplitRecord) + 4 + 64);
-}
-
-Error checkPayloadEnd(const RangeDecoder& rc, size_t size, uint64_t offset, const std::string& field) {
-  if (rc.overrun() != 0)
-    return Error{Status::kBadEntropyPayload, offset, field, "coded data ends before the records do"};
-  if (rc.consumed() != size)
-    return Error{Status::kBadEntropyPayload, offset, field,
-                 std::to_string(size - rc.consumed()) + " bytes of coded data left over"};
-  return {};
 }
 
 // spec 7.7 one split record: the cut, then vt's position and values.

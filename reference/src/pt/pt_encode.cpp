@@ -135,8 +135,6 @@ struct CollapseRecord {
   std::vector<std::array<uint32_t, 2>> cut_edges;
 };
 
-constexpr int kLinkOrder[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 // Replays the collapses on the input, fine to coarse, recording each one's cut.
 Error replayCollapses(const QuantizedTets& mesh, const std::vector<std::vector<PtCollapse>>& batches,
                       std::vector<std::vector<CollapseRecord>>* records, std::vector<Tet>* tets,

@@ -5,14 +5,6 @@
 
 namespace mrsv {
 
-namespace {
-
-// spec 7.6.1, as in tet_complex.cpp: the link triangle of the corner at
-// position i of a tet.
-constexpr int kLinkOrder[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-}  // namespace
-
 // A repeated edge (no manifold) keeps its first triangle, as
 // Link::triangleFrom finds it.
 inline void StarLink::insert(uint32_t a, uint32_t b, uint32_t third, uint32_t f) {

@@ -5,15 +5,6 @@
 
 namespace mrsv {
 
-namespace {
-
-// spec 7.6.1: the link triangle of the corner at position i of a positive tet
-// (a, b, c, d): the other three corners in the order that an even
-// permutation moving corner i to the front leaves them.
-constexpr int kLinkOrder[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-}  // namespace
-
 int64_t Link::triangleFrom(uint32_t p, uint32_t q) const {
   for (uint32_t k = corner_begin[p]; k < corner_begin[p + 1]; ++k)
     if (corners[k][0] == q) return corners[k][2];

@@ -14,6 +14,11 @@ namespace mrsv {
 
 using Tet = std::array<uint32_t, 4>;
 
+// spec 7.6.1: the link triangle of the corner at position i of a positive tet
+// (a, b, c, d): the other three corners in the order that an even
+// permutation moving corner i to the front leaves them.
+constexpr int kLinkOrder[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
 // The link of a vertex v: for each tet (v, p, q, r) with v moved to the front
 // by an even permutation, the oriented triangle (p, q, r). Local vertex i is
 // the i-th smallest vertex number of the link; its corners list the triangles

@@ -7,20 +7,16 @@
 #include <array>
 #include <cstdint>
 
+#include "tetmesh/exact_orient.h"
+
 namespace mrsv::tetsimplify {
 
 using IPoint = std::array<int32_t, 3>;
 using Int128 = __int128;
 
-// det[b - a, c - a, d - a]: positive when d lies on the side of the plane
-// (a, b, c) that the right-hand rule over a -> b -> c points to.
-inline Int128 orient3d(const IPoint& a, const IPoint& b, const IPoint& c, const IPoint& d) {
-  const int64_t bx = int64_t(b[0]) - a[0], by = int64_t(b[1]) - a[1], bz = int64_t(b[2]) - a[2];
-  const int64_t cx = int64_t(c[0]) - a[0], cy = int64_t(c[1]) - a[1], cz = int64_t(c[2]) - a[2];
-  const int64_t dx = int64_t(d[0]) - a[0], dy = int64_t(d[1]) - a[1], dz = int64_t(d[2]) - a[2];
-  return Int128(bx) * (Int128(cy) * dz - Int128(cz) * dy) + Int128(by) * (Int128(cz) * dx - Int128(cx) * dz) +
-         Int128(bz) * (Int128(cx) * dy - Int128(cy) * dx);
-}
+// The sign of det[b - a, c - a, d - a], exactly: the decoder's own predicate
+// (tetmesh/exact_orient.h), so the simplifier and the decoder cannot disagree.
+using mrsv::orient3d;
 
 inline int sign(Int128 x) { return (x > 0) - (x < 0); }
 
