@@ -103,6 +103,10 @@ struct DecodeOptions {
   // integer samples): the same samples, about twice the memory. The tests
   // compare the two.
   bool whole_array_synthesis = false;
+  // Give no-data positions the value the synthesis made there (clamped to the
+  // sample type, like any sample) instead of the no-data value: the surface the
+  // mesh reconstructors (spec 8.1) read. Not a conformance output.
+  bool void_values = false;
 };
 
 // What a file, or a prefix of one, decodes to.

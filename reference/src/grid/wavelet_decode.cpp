@@ -116,6 +116,7 @@ struct WaveletState {
   std::vector<int64_t> band_symbols;  // scratch for predicted bands
   std::vector<uint16_t> band_magnitudes;  // scratch for bands decoded in place
   std::vector<uint8_t> mask;          // 1 = no data; empty without a mask
+  bool void_values = false;           // DecodeOptions::void_values: the mask is not applied to samples
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
 };
@@ -366,7 +367,7 @@ struct IntegerSamples {
 
   IntegerSamples(const WaveletState& s, uint8_t* samples) {
     const GridHeader& g = *s.grid;
-    mask = s.mask.empty() ? nullptr : s.mask.data();
+    mask = s.mask.empty() || s.void_values ? nullptr : s.mask.data();
     residual = s.residual.empty() ? nullptr : s.residual.data();
     residual_step = s.residual_step;
     offset = static_cast<int64_t>(s.header.value_offset);
@@ -450,6 +451,7 @@ bool synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
 Error produceSamples(const DecodeOptions& options, const ChunkView& last, WaveletState* s,
                      DecodedGrid* out) {
   const GridHeader& g = *s->grid;
+  s->void_values = options.void_values;
   const int stop = options.reduce_levels < s->plan.maxLevels() ? options.reduce_levels
                                                                 : s->plan.maxLevels();
   // (None yet when every band so far had step 0.)
@@ -527,7 +529,7 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
         if (fy >= g.size_y) fy = g.size_y - 1;
         if (fz >= g.size_z) fz = g.size_z - 1;
         uint64_t fi = fx + fy * g.size_x + fz * uint64_t{g.size_x} * g.size_y;
-        if (!s->mask.empty() && s->mask[fi]) {
+        if (!s->mask.empty() && !s->void_values && s->mask[fi]) {
           std::memcpy(dst, nodata, bytes_per_sample);
           continue;
         }
