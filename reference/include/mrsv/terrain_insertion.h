@@ -46,14 +46,16 @@ class TerrainInserter {
   // prefix of the stream decodes them); the candidates are the lattice points
   // whose coordinates are multiples of 2^shift, and the last row and column.
   // Vertices already in the mesh take the field's values; then vertices are
-  // inserted, largest error first, until `limits` hold. Stages only add.
+  // inserted, largest error first, until `limits` hold, the error bound
+  // taken 2^shift times (a coarse lattice stops sooner). Stages only add.
   // Returns false with one line in `error` when the field does not fit or
   // the limits are unset.
   bool refine(const SampleField& field, unsigned shift, const InsertionLimits& limits,
               std::string* error, const InsertionProgress& progress = nullptr);
 
-  // The largest error of a lattice sample of the last stage, num / den.
-  void maxError(int64_t* num, int64_t* den) const;
+  // The largest error of a lattice sample of the last stage (informative;
+  // decisions compare exactly).
+  double maxError() const;
   uint64_t vertexCount() const;
   uint64_t cellCount() const;
   void mesh(GridMesh* out) const;

@@ -1,0 +1,131 @@
+// spec: 8.4 the Delaunay triangulation of the mesh's vertices.
+#include "reconstruct/delaunay2.h"
+
+namespace mrsv::reconstruct {
+
+Delaunay2::Delaunay2(int32_t max_x, int32_t max_y) {
+  points_ = {{0, 0}, {max_x, 0}, {max_x, max_y}, {0, max_y}};
+  // The diagonal the perturbed test picks: (0,0)-(max,max) unless (0,max)
+  // conflicts with the triangle below it.
+  tris_.resize(2);
+  nbrs_.resize(2);
+  if (!inCircleConflict(points_[0], points_[1], points_[2], points_[3])) {
+    set(0, 0, 1, 2, kNone, 1, kNone);
+    set(1, 0, 2, 3, kNone, kNone, 0);
+  } else {
+    set(0, 0, 1, 3, 1, kNone, kNone);
+    set(1, 1, 2, 3, kNone, 0, kNone);
+  }
+}
+
+uint32_t Delaunay2::addTriangle() {
+  tris_.push_back({0, 0, 0});
+  nbrs_.push_back({kNone, kNone, kNone});
+  return static_cast<uint32_t>(tris_.size() - 1);
+}
+
+void Delaunay2::set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc) {
+  tris_[t] = {a, b, c};
+  nbrs_[t] = {na, nb, nc};
+}
+
+void Delaunay2::replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
+  if (t == kNone) return;
+  auto& n = nbrs_[t];
+  for (int i = 0; i < 3; ++i)
+    if (n[i] == from) {
+      n[i] = to;
+      return;
+    }
+}
+
+uint32_t Delaunay2::locate(Point2 p, uint32_t t) const {
+  // The visibility walk ends in a Delaunay triangulation (no cycles).
+  for (;;) {
+    const auto& v = tris_[t];
+    int i = 0;
+    for (; i < 3; ++i)
+      if (orient2d(points_[v[(i + 1) % 3]], points_[v[(i + 2) % 3]], p) < 0) break;
+    if (i == 3) return t;
+    t = nbrs_[t][i];
+  }
+}
+
+uint32_t Delaunay2::insert(Point2 p, uint32_t t, std::vector<uint32_t>* touched) {
+  const uint32_t pv = static_cast<uint32_t>(points_.size());
+  points_.push_back(p);
+  const auto v = tris_[t];
+  const auto n = nbrs_[t];
+  int on_edge = -1;
+  for (int i = 0; i < 3; ++i)
+    if (orient2d(points_[v[(i + 1) % 3]], points_[v[(i + 2) % 3]], p) == 0) on_edge = i;
+
+  stack_.clear();
+  if (on_edge < 0) {
+    // Inside: three triangles around p, each with p as corner 0.
+    const uint32_t a = v[0], b = v[1], c = v[2];
+    const uint32_t t1 = addTriangle(), t2 = addTriangle();
+    set(t, pv, a, b, n[2], t1, t2);
+    set(t1, pv, b, c, n[0], t2, t);
+    set(t2, pv, c, a, n[1], t, t1);
+    replaceNeighbour(n[0], t, t1);
+    replaceNeighbour(n[1], t, t2);
+    stack_ = {t, t1, t2};
+  } else {
+    // On the edge b-c opposite a.
+    const int i = on_edge;
+    const uint32_t a = v[i], b = v[(i + 1) % 3], c = v[(i + 2) % 3];
+    const uint32_t nb = n[(i + 1) % 3], nc = n[(i + 2) % 3], u = n[i];
+    const uint32_t t1 = addTriangle();
+    if (u == kNone) {
+      set(t, pv, a, b, nc, kNone, t1);
+      set(t1, pv, c, a, nb, t, kNone);
+      replaceNeighbour(nb, t, t1);
+      stack_ = {t, t1};
+    } else {
+      int k = 0;
+      while (nbrs_[u][k] != t) ++k;
+      const uint32_t d = tris_[u][k];
+      const uint32_t mb = nbrs_[u][(k + 2) % 3];  // across d-c (opposite b in u = (d, c, b))
+      const uint32_t mc = nbrs_[u][(k + 1) % 3];  // across b-d
+      const uint32_t u1 = addTriangle();
+      set(t, pv, a, b, nc, u1, t1);
+      set(t1, pv, c, a, nb, t, u);
+      set(u, pv, d, c, mb, t1, u1);
+      set(u1, pv, b, d, mc, u, t);
+      replaceNeighbour(nb, t, t1);
+      replaceNeighbour(mc, u, u1);
+      stack_ = {t, t1, u, u1};
+    }
+  }
+  touched->insert(touched->end(), stack_.begin(), stack_.end());
+  legalize(touched);
+  return pv;
+}
+
+void Delaunay2::legalize(std::vector<uint32_t>* touched) {
+  while (!stack_.empty()) {
+    const uint32_t t = stack_.back();
+    stack_.pop_back();
+    const uint32_t u = nbrs_[t][0];
+    if (u == kNone) continue;
+    const uint32_t p = tris_[t][0], a1 = tris_[t][1], a2 = tris_[t][2];
+    int k = 0;
+    while (nbrs_[u][k] != t) ++k;
+    const uint32_t q = tris_[u][k];
+    if (!inCircleConflict(points_[p], points_[a1], points_[a2], points_[q])) continue;
+    // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).
+    const uint32_t t1 = nbrs_[t][1], t2 = nbrs_[t][2];                   // across a2-p, p-a1
+    const uint32_t u1 = nbrs_[u][(k + 1) % 3], u2 = nbrs_[u][(k + 2) % 3];  // across a1-q, q-a2
+    set(t, p, a1, q, u1, u, t2);
+    set(u, p, q, a2, u2, t1, t);
+    replaceNeighbour(u1, u, t);
+    replaceNeighbour(t1, t, u);
+    stack_.push_back(t);
+    stack_.push_back(u);
+    touched->push_back(t);
+    touched->push_back(u);
+  }
+}
+
+}  // namespace mrsv::reconstruct

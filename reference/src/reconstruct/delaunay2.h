@@ -1,0 +1,54 @@
+// An incremental 2-D Delaunay triangulation of grid points inside a
+// rectangle whose four corners are vertices (spec 8.4). Points are added one
+// at a time (Lawson: split the triangle or edge that holds the point, then
+// flip edges that fail the perturbed in-circle test), so the triangulation is
+// always the unique perturbed Delaunay triangulation of the points added.
+// Triangle slots are never freed: a split adds one or two, a flip reuses both.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "reconstruct/exact_predicates2.h"
+
+namespace mrsv::reconstruct {
+
+class Delaunay2 {
+ public:
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+  // The rectangle [0, max_x] x [0, max_y] (both at least 1) as two triangles.
+  Delaunay2(int32_t max_x, int32_t max_y);
+
+  // A triangle holding p (inside or on its border), walking from `hint`.
+  uint32_t locate(Point2 p, uint32_t hint) const;
+
+  // Adds p, which must lie in triangle `t` (inside or on an edge) and not be
+  // a vertex. The slots of every triangle made or changed are appended to
+  // `touched` (possibly more than once). Returns the new vertex's number.
+  uint32_t insert(Point2 p, uint32_t t, std::vector<uint32_t>* touched);
+
+  size_t vertexCount() const { return points_.size(); }
+  size_t triangleCount() const { return tris_.size(); }
+  Point2 point(uint32_t v) const { return points_[v]; }
+  // Counter-clockwise corners; edge i is the one opposite corner i.
+  const std::array<uint32_t, 3>& triangle(uint32_t t) const { return tris_[t]; }
+  // The triangle across edge i, or kNone on the rectangle's border.
+  const std::array<uint32_t, 3>& neighbours(uint32_t t) const { return nbrs_[t]; }
+
+ private:
+  uint32_t addTriangle();
+  void set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc);
+  void replaceNeighbour(uint32_t t, uint32_t from, uint32_t to);
+  // Flips edges opposite the new vertex until all are locally Delaunay.
+  void legalize(std::vector<uint32_t>* touched);
+
+  std::vector<Point2> points_;
+  std::vector<std::array<uint32_t, 3>> tris_;
+  std::vector<std::array<uint32_t, 3>> nbrs_;
+  std::vector<uint32_t> stack_;  // triangles whose edge 0 (opposite the new vertex) awaits a test
+};
+
+}  // namespace mrsv::reconstruct

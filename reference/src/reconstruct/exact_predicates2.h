@@ -1,0 +1,70 @@
+// Exact 2-D predicates on grid points, with the symbolic perturbation that
+// makes the Delaunay triangulation of any point set unique. spec: 8.3.
+//
+// Coordinates are grid indices in [0, 2^16] (spec 8.1 bounds the sides), so
+// differences fit in 17 bits: orient2d's products in 35 bits (64-bit exact)
+// and incircle's terms in 2 x 35 = 70 bits (128-bit exact). No floating
+// point: every implementation gets the same signs.
+#pragma once
+
+#include <cstdint>
+
+namespace mrsv::reconstruct {
+
+struct Point2 {
+  int32_t x = 0, y = 0;
+};
+
+// Twice the signed area of (a, b, c): positive when counter-clockwise.
+inline int64_t orient2d(Point2 a, Point2 b, Point2 c) {
+  return (int64_t{b.x} - a.x) * (int64_t{c.y} - a.y) - (int64_t{b.y} - a.y) * (int64_t{c.x} - a.x);
+}
+
+inline int sign(int64_t v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+// The sign of the in-circle determinant: +1 when d lies inside the circle
+// through the counter-clockwise triangle (a, b, c), -1 outside, 0 on it.
+inline int incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
+  const int64_t adx = int64_t{a.x} - d.x, ady = int64_t{a.y} - d.y;
+  const int64_t bdx = int64_t{b.x} - d.x, bdy = int64_t{b.y} - d.y;
+  const int64_t cdx = int64_t{c.x} - d.x, cdy = int64_t{c.y} - d.y;
+  const __int128 det = __int128{adx * adx + ady * ady} * (bdx * cdy - bdy * cdx) +
+                       __int128{bdx * bdx + bdy * bdy} * (cdx * ady - cdy * adx) +
+                       __int128{cdx * cdx + cdy * cdy} * (adx * bdy - ady * bdx);
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+// Lexicographic order (x, then y): the order of the symbolic perturbation.
+inline bool lexLess(Point2 p, Point2 q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
+
+// Whether d conflicts with the counter-clockwise triangle (a, b, c): inside
+// its circle, the cocircular case decided by the perturbation of spec 8.3
+// (Devillers and Teillaud): of the four points the lexicographically largest
+// is looked at first; if it is d, d is outside; if it is a vertex of the
+// triangle, the answer is the orientation of the triangle with that vertex
+// replaced by d, unless zero, in which case the next largest decides the
+// same way. Two steps always decide (the triangle is not degenerate and the
+// four points are distinct).
+inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d) {
+  const int s = incircle(a, b, c, d);
+  if (s != 0) return s > 0;
+  const Point2* pts[4] = {&a, &b, &c, &d};
+  // Sort the four pointers by decreasing lexicographic order (insertion sort).
+  for (int i = 1; i < 4; ++i)
+    for (int j = i; j > 0 && lexLess(*pts[j - 1], *pts[j]); --j) {
+      const Point2* t = pts[j - 1];
+      pts[j - 1] = pts[j];
+      pts[j] = t;
+    }
+  for (int i = 0; i < 2; ++i) {
+    int64_t o = 0;
+    if (pts[i] == &d) return false;
+    if (pts[i] == &c) o = orient2d(a, b, d);
+    else if (pts[i] == &b) o = orient2d(a, d, c);
+    else o = orient2d(d, b, c);
+    if (o != 0) return o > 0;
+  }
+  return false;  // not reached for a proper triangle
+}
+
+}  // namespace mrsv::reconstruct

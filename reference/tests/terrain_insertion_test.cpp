@@ -1,0 +1,222 @@
+// spec 8.3 to 8.7: the 2-D Delaunay core against CGAL, and greedy insertion
+// on real terrains: valid triangulations, the error bound on every sample,
+// the border rule across two tiles, stages that only add vertices.
+#include "mrsv/terrain_insertion.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "grid_mesh_checks.h"
+#include "reconstruct/delaunay2.h"
+
+namespace mrsv {
+namespace {
+
+using reconstruct::Delaunay2;
+using reconstruct::Point2;
+using Tri = std::array<int32_t, 6>;  // three (x, y) corners, smallest first, counter-clockwise
+
+Tri canonicalTri(Point2 a, Point2 b, Point2 c) {
+  Point2 p[3] = {a, b, c};
+  int m = 0;
+  for (int i = 1; i < 3; ++i)
+    if (reconstruct::lexLess(p[i], p[m])) m = i;
+  return {p[m].x, p[m].y, p[(m + 1) % 3].x, p[(m + 1) % 3].y, p[(m + 2) % 3].x, p[(m + 2) % 3].y};
+}
+
+std::vector<Tri> ourTriangles(const std::vector<Point2>& pts, int32_t mx, int32_t my) {
+  Delaunay2 dt(mx, my);
+  std::vector<uint32_t> touched;
+  uint32_t hint = 0;
+  for (Point2 p : pts) {
+    const bool corner = (p.x == 0 || p.x == mx) && (p.y == 0 || p.y == my);
+    if (corner) continue;
+    hint = dt.locate(p, hint);
+    touched.clear();
+    dt.insert(p, hint, &touched);
+    hint = touched.front();
+  }
+  std::vector<Tri> out;
+  for (uint32_t t = 0; t < dt.triangleCount(); ++t) {
+    const auto& v = dt.triangle(t);
+    out.push_back(canonicalTri(dt.point(v[0]), dt.point(v[1]), dt.point(v[2])));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Tri> cgalTriangles(const std::vector<Point2>& pts) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  CGAL::Delaunay_triangulation_2<K> dt;
+  for (Point2 p : pts) dt.insert(K::Point_2(p.x, p.y));
+  std::vector<Tri> out;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    Point2 c[3];
+    for (int i = 0; i < 3; ++i) c[i] = {int32_t(f->vertex(i)->point().x()), int32_t(f->vertex(i)->point().y())};
+    out.push_back(canonicalTri(c[0], c[1], c[2]));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Grid points are as cocircular as points get: the perturbation decides, and
+// it must decide as CGAL's Delaunay_triangulation_2 does (the same
+// Devillers-Teillaud rule), whatever the insertion order.
+TEST(Delaunay2, SameTrianglesAsCgalOnDegenerateGridSubsets) {
+  std::mt19937 rng(2211);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int32_t mx = 8 + trial % 25, my = 6 + (trial * 7) % 27;
+    std::vector<Point2> pts = {{0, 0}, {mx, 0}, {mx, my}, {0, my}};
+    const double keep = (trial % 4 + 1) / 4.0;
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int32_t y = 0; y <= my; ++y)
+      for (int32_t x = 0; x <= mx; ++x)
+        if (!((x == 0 || x == mx) && (y == 0 || y == my)) && u(rng) < keep) pts.push_back({x, y});
+    std::vector<Point2> shuffled(pts.begin() + 4, pts.end());
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    const auto ours = ourTriangles(shuffled, mx, my);
+    const auto theirs = cgalTriangles(pts);
+    ASSERT_EQ(ours, theirs) << "trial " << trial << ": " << mx << " x " << my << ", " << pts.size() << " points";
+  }
+}
+
+TEST(Delaunay2, InsertionOrderDoesNotMatter) {
+  std::mt19937 rng(7);
+  std::vector<Point2> pts;
+  for (int32_t y = 0; y <= 20; ++y)
+    for (int32_t x = 0; x <= 30; ++x)
+      if ((x * 7 + y * 3) % 5 != 0) pts.push_back({x, y});
+  const auto first = ourTriangles(pts, 30, 20);
+  for (int k = 0; k < 5; ++k) {
+    std::shuffle(pts.begin(), pts.end(), rng);
+    EXPECT_EQ(ourTriangles(pts, 30, 20), first);
+  }
+}
+
+GridMesh insertionMesh(const SampleField& f, const char* error, bool border = true, uint64_t cells = 0) {
+  TerrainInserter ins(f.size[0], f.size[1]);
+  InsertionLimits limits;
+  if (error) {
+    EXPECT_TRUE(parseErrorBound(error, &limits.max_error));
+  }
+  limits.max_cells = cells;
+  limits.border_rule = border;
+  std::string problem;
+  EXPECT_TRUE(ins.refine(f, 0, limits, &problem)) << problem;
+  GridMesh m;
+  ins.mesh(&m);
+  return m;
+}
+
+TEST(TerrainInsertion, ErrorBoundHoldsOnEverySampleOfRealTerrains) {
+  const SampleField helens = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 317, 460);
+  const SampleField fuji = test::terrainCrop("srtm3_N35E138_mt_fuji_1201x1201_int16le.raw.zst", 441, 304, 460, 378);
+  for (const SampleField* f : {&helens, &fuji}) {
+    size_t previous = SIZE_MAX;
+    for (const char* e : {"1", "5", "20", "50"}) {
+      for (bool border : {true, false}) {
+        const GridMesh m = insertionMesh(*f, e, border);
+        EXPECT_EQ(test::triangulationProblem(m), "") << e;
+        ErrorBound b;
+        parseErrorBound(e, &b);
+        double worst = 0;
+        EXPECT_TRUE(test::withinBoundEverywhere(*f, m, b, &worst)) << e << " m: " << worst;
+        EXPECT_LE(worst, double(b.num) / b.den);
+        if (border) {
+          EXPECT_LT(m.cells.size(), previous) << e;
+          previous = m.cells.size();
+        }
+      }
+    }
+  }
+}
+
+TEST(TerrainInsertion, TriangleCountLimit) {
+  const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 257, 257);
+  const GridMesh m = insertionMesh(f, nullptr, false, 5000);
+  EXPECT_EQ(test::triangulationProblem(m), "");
+  EXPECT_GE(m.cells.size(), 5000u);
+  EXPECT_LE(m.cells.size(), 5002u);
+}
+
+// spec 8.6: two windows sharing a column, meshed apart, have the same
+// vertices on it, so their meshes meet without cracks.
+TEST(TerrainInsertion, BorderRuleMakesAdjacentTilesMeet) {
+  const char* file = "big_tujunga_1197x643_int16le.raw.zst";
+  const SampleField left = test::terrainCrop(file, 300, 100, 257, 257);
+  const SampleField right = test::terrainCrop(file, 556, 100, 257, 257);
+  const SampleField below = test::terrainCrop(file, 300, 356, 257, 257);
+  for (const char* e : {"1", "5", "20", "50"}) {
+    const GridMesh a = insertionMesh(left, e), b = insertionMesh(right, e), c = insertionMesh(below, e);
+    std::set<uint32_t> a_right, b_left, a_bottom, c_top;
+    for (const auto& p : a.points) {
+      if (p[0] == 256) a_right.insert(p[1]);
+      if (p[1] == 256) a_bottom.insert(p[0]);
+    }
+    for (const auto& p : b.points)
+      if (p[0] == 0) b_left.insert(p[1]);
+    for (const auto& p : c.points)
+      if (p[1] == 0) c_top.insert(p[0]);
+    EXPECT_EQ(a_right, b_left) << e;
+    EXPECT_EQ(a_bottom, c_top) << e;
+    EXPECT_GT(a_right.size(), 2u) << e;
+  }
+}
+
+// spec 8.7: stages on coarser lattices first only add vertices, and end
+// within the bound with few more triangles than one stage.
+TEST(TerrainInsertion, StagesOnlyAddVertices) {
+  const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 317, 460);
+  for (const char* e : {"5", "20"}) {
+    InsertionLimits limits;
+    parseErrorBound(e, &limits.max_error);
+    TerrainInserter ins(f.size[0], f.size[1]);
+    std::set<std::array<uint32_t, 3>> previous;
+    std::string problem;
+    for (int shift = 4; shift >= 0; --shift) {
+      ASSERT_TRUE(ins.refine(f, shift, limits, &problem)) << problem;
+      GridMesh m;
+      ins.mesh(&m);
+      std::set<std::array<uint32_t, 3>> now(m.points.begin(), m.points.end());
+      EXPECT_TRUE(std::includes(now.begin(), now.end(), previous.begin(), previous.end()));
+      for (const auto& p : m.points) {
+        const bool lattice = (p[0] % (1u << shift) == 0 || p[0] == f.size[0] - 1) &&
+                             (p[1] % (1u << shift) == 0 || p[1] == f.size[1] - 1);
+        EXPECT_TRUE(lattice) << shift;
+      }
+      previous = std::move(now);
+    }
+    GridMesh last;
+    ins.mesh(&last);
+    double worst = 0;
+    EXPECT_TRUE(test::withinBoundEverywhere(f, last, limits.max_error, &worst));
+    const GridMesh single = insertionMesh(f, e);
+    EXPECT_LE(last.cells.size(), single.cells.size() * 11 / 10) << e;
+  }
+}
+
+TEST(TerrainInsertion, CanonicalOutputIsRepeatable) {
+  const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 30, 40, 129, 200);
+  EXPECT_EQ(canonicalGridMeshOutput(insertionMesh(f, "3.5")), canonicalGridMeshOutput(insertionMesh(f, "3.5")));
+}
+
+TEST(TerrainInsertion, RefusesAFieldOfAnotherSize) {
+  const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 65, 65);
+  TerrainInserter ins(64, 65);
+  InsertionLimits limits;
+  parseErrorBound("1", &limits.max_error);
+  std::string error;
+  EXPECT_FALSE(ins.refine(f, 0, limits, &error));
+  EXPECT_NE(error, "");
+  TerrainInserter ok(65, 65);
+  EXPECT_FALSE(ok.refine(f, 0, InsertionLimits{}, &error));
+}
+
+}  // namespace
+}  // namespace mrsv
