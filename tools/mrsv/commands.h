@@ -15,6 +15,7 @@ int runInfo(int argc, char** argv);
 int runCheck(int argc, char** argv);
 int runCompare(int argc, char** argv);
 int runTetrahedralize(int argc, char** argv);
+int runMesh(int argc, char** argv);  // cmd_reconstruct.cpp: the reconstructors of spec 8
 
 // Meshes (cmd_mesh.cpp): encode dispatches when an argument names a mesh file;
 // decode and check dispatch on the stream's first chunk.

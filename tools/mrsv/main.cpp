@@ -21,6 +21,7 @@ const char kHelp[] =
     "  check    validate .mrsv files; one line per file naming any broken rule\n"
     "  compare  distances between two triangle meshes (Hausdorff, mean, RMS; Metro-like)\n"
     "  tetrahedralize  tet meshes from grids and PLOT3D data; tet mesh format conversion\n"
+    "  mesh     an adaptive mesh (TIN or tets) of a grid stream: Delaunay insertion, quadtree\n"
     "\n"
     "'mrsv COMMAND --help' describes each command. 'mrsv --version' prints versions.\n"
     "Exit status: 0 success, 1 invalid input data, 2 usage error, 3 file error.\n";
@@ -37,6 +38,7 @@ const Command kCommands[] = {
     {"check", mrsv::cli::runCheck},
     {"compare", mrsv::cli::runCompare},
     {"tetrahedralize", mrsv::cli::runTetrahedralize},
+    {"mesh", mrsv::cli::runMesh},
 };
 
 }  // namespace

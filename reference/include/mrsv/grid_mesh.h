@@ -46,6 +46,18 @@ struct ErrorBound {
 // Accepts 0 to 2^31 with at most 9 decimals; returns false otherwise.
 bool parseErrorBound(const std::string& text, ErrorBound* bound);
 
+// spec 8.7: the stages in which a stream's bytes refine a mesh, coarse to
+// fine. Stage k reads the first `bytes` bytes (a prefix ending with the last
+// band of a level, or all of `size`) and its lattice has step 2^shift. A
+// stored grid, or a wavelet grid whose bytes end before the first level is
+// complete, has one stage. `grid` is the one-shot decode of all the bytes
+// (decodeGrid with `size`).
+struct ReconstructionStage {
+  uint64_t bytes = 0;
+  unsigned shift = 0;
+};
+std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, uint64_t size);
+
 // An adaptive mesh whose vertices are grid points. 2-D: triangles, counter-
 // clockwise seen from +z (x right, y up), cell[3] unused; 3-D: tets, positively
 // oriented (det[b - a, c - a, d - a] > 0).

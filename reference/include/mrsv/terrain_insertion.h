@@ -47,7 +47,8 @@ class TerrainInserter {
   // whose coordinates are multiples of 2^shift, and the last row and column.
   // Vertices already in the mesh take the field's values; then vertices are
   // inserted, largest error first, until `limits` hold, the error bound
-  // taken 2^shift times (a coarse lattice stops sooner). Stages only add.
+  // taken 2^(shift+1) times when shift > 0 (a coarse lattice stops sooner).
+  // Stages only add.
   // Returns false with one line in `error` when the field does not fit or
   // the limits are unset.
   bool refine(const SampleField& field, unsigned shift, const InsertionLimits& limits,

@@ -3,6 +3,7 @@
 #   MRSV_RECONSTRUCT_SOURCES -> mrsv_decode (exact integer arithmetic, no dependencies)
 set(MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/grid_mesh.cpp
+  reference/src/reconstruct/grid_stages.cpp
   reference/src/reconstruct/delaunay2.cpp
   reference/src/reconstruct/line_insertion.cpp
   reference/src/reconstruct/terrain_insertion.cpp)

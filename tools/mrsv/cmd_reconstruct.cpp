@@ -1,0 +1,204 @@
+// mrsv mesh: an adaptive mesh of a grid stream by one of the reconstructors
+// of spec 8 (Delaunay vertex insertion, 2-D and 3-D; quadtree vertex removal,
+// 2-D).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "cli.h"
+#include "commands.h"
+#include "mrsv/file_io.h"
+#include "mrsv/grid_mesh.h"
+#include "mrsv/mesh_formats.h"
+#include "mrsv/terrain_insertion.h"
+#include "mrsv/tet_formats.h"
+
+namespace mrsv::cli {
+namespace {
+
+const char kMeshHelp[] =
+    "Usage: mrsv mesh [options] IN.mrsv OUT\n"
+    "\n"
+    "An adaptive mesh of a grid stream (spec 8): a TIN of a 2-D grid (OUT .obj, .ply\n"
+    "with the sample as a vertex property, .off) or a tet mesh of a 3-D grid (OUT\n"
+    ".vtu, .vtk, .mesh, .node; the sample as the field 'value'). x, y (and z) come\n"
+    "from the stream's 'spacing' and 'origin' meta entries, heights from the samples.\n"
+    "Every decision is exact integer arithmetic on the decoded samples, so the mesh\n"
+    "is the same in every conforming implementation (--canonical writes the bytes\n"
+    "the conformance suite hashes). No-data samples take the value the wavelet\n"
+    "synthesis gives them.\n"
+    "\n"
+    "Options:\n"
+    "  --method insertion|quadtree  Delaunay vertex insertion (default; 2-D and 3-D) or\n"
+    "                        quadtree vertex removal (2-D)\n"
+    "  --max-error E         every sample within E (sample units, a decimal such as\n"
+    "                        20 or 0.5) of the mesh\n"
+    "  --triangles N         2-D: stop at N triangles (insertion) or the finest mesh\n"
+    "                        with at most N (quadtree)\n"
+    "  --tets N              3-D: stop at N tets\n"
+    "  --epsilon X           quadtree: the paper's wavelet criterion threshold\n"
+    "  --progressive         insertion: refine level by level as the stream's bands\n"
+    "                        come (spec 8.7) instead of once from the whole prefix\n"
+    "  --no-border-rule      insertion, 2-D: let the greedy choice place the vertices\n"
+    "                        of the sides too (by default each side is refined from its\n"
+    "                        own samples, so that adjacent tiles meet without cracks)\n"
+    "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
+    "                        arrived\n"
+    "  --levels K            use the stream without its K finest levels\n"
+    "  --z-scale S           2-D: heights are sample x S (default 1)\n"
+    "  --canonical           write the canonical output of spec 8.2 instead of a mesh\n"
+    "  --quiet               no progress or summary on stderr\n"
+    "  --help                this text\n"
+    "\n"
+    "Exit status: 0 success, 1 invalid input data, 2 usage error, 3 file error.\n";
+
+struct MeshRequest {
+  std::string method = "insertion";
+  InsertionLimits limits;
+  bool progressive = false;
+  bool quiet = false;
+};
+
+bool isTriangleFormat(const std::string& path) {
+  for (const char* ext : {".obj", ".ply", ".off"})
+    if (path.size() > 4 && path.compare(path.size() - 4, 4, ext) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+int runMesh(int argc, char** argv) {
+  const char* cmd = "mesh";
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv,
+                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale"},
+                   {"progressive", "no-border-rule", "canonical", "quiet", "help"},
+                   {}},
+                  &error))
+    return fail(cmd, error + " (see 'mrsv mesh --help')", kExitUsage);
+  if (args.flag("help")) {
+    std::fputs(kMeshHelp, stdout);
+    return kExitOk;
+  }
+  if (args.positional().size() != 2) return fail(cmd, "expected IN.mrsv and OUT", kExitUsage);
+  const std::string in = args.positional()[0], out = args.positional()[1];
+  if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+
+  MeshRequest req;
+  req.quiet = args.flag("quiet");
+  if (args.has("method")) req.method = args.value("method");
+  if (req.method != "insertion" && req.method != "quadtree")
+    return fail(cmd, "--method must be insertion or quadtree", kExitUsage);
+  if (args.has("max-error") && !parseErrorBound(args.value("max-error"), &req.limits.max_error))
+    return fail(cmd, "--max-error must be a decimal from 0 to 2147483648 with at most 9 decimals", kExitUsage);
+  if (args.has("triangles") && args.has("tets")) return fail(cmd, "give --triangles or --tets, not both", kExitUsage);
+  for (const char* name : {"triangles", "tets"})
+    if (args.has(name) && (!parseUint64(args.value(name), &req.limits.max_cells) || req.limits.max_cells == 0))
+      return fail(cmd, std::string("--") + name + " must be a positive whole number", kExitUsage);
+  if (!req.limits.max_error.set() && req.limits.max_cells == 0 && !args.has("epsilon"))
+    return fail(cmd, "give --max-error, --triangles, --tets or --epsilon", kExitUsage);
+  req.limits.border_rule = !args.flag("no-border-rule");
+  req.progressive = args.flag("progressive");
+  if (req.method == "quadtree" && (req.progressive || args.flag("no-border-rule")))
+    return fail(cmd, "--progressive and --no-border-rule are for --method insertion", kExitUsage);
+  if (req.method == "insertion" && args.has("epsilon"))
+    return fail(cmd, "--epsilon is for --method quadtree", kExitUsage);
+  uint64_t byte_limit = UINT64_MAX, levels = 0;
+  if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
+    return fail(cmd, "--bytes must be a whole number", kExitUsage);
+  if (args.has("levels") && (!parseUint64(args.value("levels"), &levels) || levels > 16))
+    return fail(cmd, "--levels must be a whole number from 0 to 16", kExitUsage);
+  double z_scale = 1;
+  if (args.has("z-scale") && !parseDouble(args.value("z-scale"), &z_scale))
+    return fail(cmd, "--z-scale must be a number", kExitUsage);
+  const bool canonical = args.flag("canonical");
+
+  std::vector<uint8_t> bytes;
+  if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
+  if (byte_limit < bytes.size()) bytes.resize(byte_limit);
+  DecodeOptions options;
+  options.void_values = true;
+  DecodedGrid grid;
+  if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) return reportError(cmd, in, e);
+  if (!grid.has_samples) return fail(cmd, in + ": the stream holds no samples yet (no band in the bytes read)", kExitInvalidData);
+  const int dims = grid.header.num_dims;
+  if (dims == 3 && req.method == "quadtree")
+    return fail(cmd, in + ": the quadtree reconstructor meshes 2-D grids; use --method insertion", kExitUsage);
+  if (dims == 2 && args.has("tets")) return fail(cmd, in + ": a 2-D grid gives triangles: use --triangles", kExitUsage);
+  if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
+  if (!canonical && dims == 2 && !isTriangleFormat(out))
+    return fail(cmd, out + ": a 2-D grid gives a triangle mesh: write .obj, .ply or .off", kExitUsage);
+  if (!canonical && dims == 3 && isTriangleFormat(out))
+    return fail(cmd, out + ": a 3-D grid gives a tet mesh: write .vtu, .vtk, .mesh or .node", kExitUsage);
+
+  // spec 8.7: the stages, less the K finest levels.
+  std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size());
+  if (levels > 0) {
+    while (!stages.empty() && stages.back().shift < levels) stages.pop_back();
+    if (stages.empty())
+      return fail(cmd, in + ": --levels " + std::to_string(levels) + " leaves no complete level in the bytes read",
+                  kExitInvalidData);
+  }
+  if (!req.progressive) stages.erase(stages.begin(), stages.end() - 1);
+
+  const auto start = std::chrono::steady_clock::now();
+  GridMesh mesh;
+  if (req.method == "insertion" && dims == 2) {
+    TerrainInserter inserter(grid.header.size_x, grid.header.size_y);
+    for (size_t k = 0; k < stages.size(); ++k) {
+      DecodedGrid prefix;
+      const DecodedGrid* source = &grid;
+      if (stages[k].bytes != bytes.size()) {
+        if (Error e = decodeGrid(bytes.data(), stages[k].bytes, options, &prefix); !e.ok())
+          return reportError(cmd, in, e);
+        source = &prefix;
+      }
+      SampleField field;
+      if (!sampleFieldFromGrid(*source, &field, &error)) return fail(cmd, in + ": " + error, kExitInvalidData);
+      Progress progress("mesh", req.quiet);
+      const uint64_t goal = req.limits.max_cells;
+      const auto report = [&](uint64_t cells) {
+        if (goal) progress.update(double(cells) / double(goal));
+        return true;
+      };
+      if (!inserter.refine(field, stages[k].shift, req.limits, &error, report))
+        return fail(cmd, in + ": " + error, kExitInvalidData);
+      if (!req.quiet && stages.size() > 1)
+        std::fprintf(stderr, "mrsv mesh: stage %zu of %zu (%llu bytes, lattice step %u): %llu triangles, max error %.4g\n",
+                     k + 1, stages.size(), (unsigned long long)stages[k].bytes, 1u << stages[k].shift,
+                     (unsigned long long)inserter.cellCount(), inserter.maxError());
+    }
+    inserter.mesh(&mesh);
+  } else {
+    return fail(cmd, in + ": --method " + req.method + " on a " + std::to_string(dims) + "-D grid is not available in this build",
+                kExitUsage);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (canonical) {
+    if (!writeFileAtomically(out, canonicalGridMeshOutput(mesh), &error)) return fail(cmd, out + ": " + error, kExitIo);
+  } else {
+    GridMeshGeometry geometry;
+    geometry.z_scale = z_scale;
+    if (!gridMeshGeometryFromMetadata(grid.metadata, dims, &geometry, &error))
+      return fail(cmd, in + ": " + error, kExitInvalidData);
+    if (dims == 2) {
+      TriangleMesh tin = gridMeshToTriangles(mesh, geometry);
+      if (out.size() < 4 || out.compare(out.size() - 4, 4, ".ply") != 0) tin.scalars.clear();
+      std::vector<uint8_t> file;
+      if (!encodeMeshFile(out, tin, &file, &error)) return fail(cmd, out + ": " + error, kExitUsage);
+      if (!writeFileAtomically(out, file, &error)) return fail(cmd, out + ": " + error, kExitIo);
+    } else {
+      TetWriteReport report;
+      if (!writeTetFile(out, gridMeshToTets(mesh, geometry), TetWriteOptions{}, &report, &error))
+        return fail(cmd, out + ": " + error, kExitIo);
+    }
+  }
+  if (!req.quiet)
+    std::fprintf(stderr, "mrsv mesh: %s, %s: %zu vertices, %zu %s in %.3f s\n", in.c_str(), req.method.c_str(),
+                 mesh.points.size(), mesh.cells.size(), dims == 2 ? "triangles" : "tets", seconds);
+  return kExitOk;
+}
+
+}  // namespace mrsv::cli
