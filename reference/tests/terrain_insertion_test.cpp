@@ -30,8 +30,11 @@ Tri canonicalTri(Point2 a, Point2 b, Point2 c) {
   return {p[m].x, p[m].y, p[(m + 1) % 3].x, p[(m + 1) % 3].y, p[(m + 2) % 3].x, p[(m + 2) % 3].y};
 }
 
-std::vector<Tri> ourTriangles(const std::vector<Point2>& pts, int32_t mx, int32_t my) {
-  Delaunay2 dt(mx, my);
+// `rank` gives each point's rank (spec 8.3) from its coordinates.
+template <class Rank>
+std::vector<Tri> ourTriangles(const std::vector<Point2>& pts, int32_t mx, int32_t my, Rank&& rank) {
+  const uint64_t corners[4] = {rank(Point2{0, 0}), rank(Point2{mx, 0}), rank(Point2{mx, my}), rank(Point2{0, my})};
+  Delaunay2 dt(mx, my, corners);
   std::vector<uint32_t> touched;
   uint32_t hint = 0;
   for (Point2 p : pts) {
@@ -39,7 +42,7 @@ std::vector<Tri> ourTriangles(const std::vector<Point2>& pts, int32_t mx, int32_
     if (corner) continue;
     hint = dt.locate(p, hint);
     touched.clear();
-    dt.insert(p, hint, &touched);
+    dt.insert(p, rank(p), hint, &touched);
     hint = touched.front();
   }
   std::vector<Tri> out;
@@ -65,9 +68,10 @@ std::vector<Tri> cgalTriangles(const std::vector<Point2>& pts) {
   return out;
 }
 
-// Grid points are as cocircular as points get: the perturbation decides, and
-// it must decide as CGAL's Delaunay_triangulation_2 does (the same
-// Devillers-Teillaud rule), whatever the insertion order.
+// Grid points are as cocircular as points get: the perturbation decides. With
+// ranks in lexicographic order it must decide as CGAL's
+// Delaunay_triangulation_2 does (the same Devillers-Teillaud rule), whatever
+// the insertion order.
 TEST(Delaunay2, SameTrianglesAsCgalOnDegenerateGridSubsets) {
   std::mt19937 rng(2211);
   for (int trial = 0; trial < 40; ++trial) {
@@ -80,23 +84,32 @@ TEST(Delaunay2, SameTrianglesAsCgalOnDegenerateGridSubsets) {
         if (!((x == 0 || x == mx) && (y == 0 || y == my)) && u(rng) < keep) pts.push_back({x, y});
     std::vector<Point2> shuffled(pts.begin() + 4, pts.end());
     std::shuffle(shuffled.begin(), shuffled.end(), rng);
-    const auto ours = ourTriangles(shuffled, mx, my);
+    const auto lex = [&](Point2 p) { return uint64_t(p.x) * 1000 + uint64_t(p.y); };
+    const auto ours = ourTriangles(shuffled, mx, my, lex);
     const auto theirs = cgalTriangles(pts);
     ASSERT_EQ(ours, theirs) << "trial " << trial << ": " << mx << " x " << my << ", " << pts.size() << " points";
   }
 }
 
-TEST(Delaunay2, InsertionOrderDoesNotMatter) {
+// Any ranks make the triangulation unique: the same for every insertion order.
+TEST(Delaunay2, InsertionOrderDoesNotMatterForGivenRanks) {
   std::mt19937 rng(7);
   std::vector<Point2> pts;
   for (int32_t y = 0; y <= 20; ++y)
     for (int32_t x = 0; x <= 30; ++x)
-      if ((x * 7 + y * 3) % 5 != 0) pts.push_back({x, y});
-  const auto first = ourTriangles(pts, 30, 20);
+      if ((x * 7 + y * 3) % 5 != 0 || x == 0 || y == 0) pts.push_back({x, y});
+  std::vector<uint64_t> ranks(31 * 21);
+  for (size_t i = 0; i < ranks.size(); ++i) ranks[i] = i;
+  std::shuffle(ranks.begin(), ranks.end(), rng);
+  const auto rank = [&](Point2 p) { return ranks[size_t(p.y) * 31 + size_t(p.x)]; };
+  const auto first = ourTriangles(pts, 30, 20, rank);
   for (int k = 0; k < 5; ++k) {
     std::shuffle(pts.begin(), pts.end(), rng);
-    EXPECT_EQ(ourTriangles(pts, 30, 20), first);
+    EXPECT_EQ(ourTriangles(pts, 30, 20, rank), first);
   }
+  // Other ranks may give another of the (many) Delaunay triangulations.
+  const auto lex = [&](Point2 p) { return uint64_t(p.x) * 1000 + uint64_t(p.y); };
+  EXPECT_NE(ourTriangles(pts, 30, 20, lex), first);
 }
 
 GridMesh insertionMesh(const SampleField& f, const char* error, bool border = true, uint64_t cells = 0) {

@@ -3,19 +3,26 @@
 
 namespace mrsv::reconstruct {
 
-Delaunay2::Delaunay2(int32_t max_x, int32_t max_y) {
+Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks) {
   points_ = {{0, 0}, {max_x, 0}, {max_x, max_y}, {0, max_y}};
+  ranks_ = {0, 1, 2, 3};
+  if (corner_ranks) ranks_.assign(corner_ranks, corner_ranks + 4);
   // The diagonal the perturbed test picks: (0,0)-(max,max) unless (0,max)
   // conflicts with the triangle below it.
   tris_.resize(2);
   nbrs_.resize(2);
-  if (!inCircleConflict(points_[0], points_[1], points_[2], points_[3])) {
+  if (!conflict(0, 1, 2, 3)) {
     set(0, 0, 1, 2, kNone, 1, kNone);
     set(1, 0, 2, 3, kNone, kNone, 0);
   } else {
     set(0, 0, 1, 3, 1, kNone, kNone);
     set(1, 1, 2, 3, kNone, 0, kNone);
   }
+}
+
+bool Delaunay2::conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
+  const uint64_t rank[4] = {ranks_[a], ranks_[b], ranks_[c], ranks_[d]};
+  return inCircleConflict(points_[a], points_[b], points_[c], points_[d], rank);
 }
 
 uint32_t Delaunay2::addTriangle() {
@@ -51,9 +58,10 @@ uint32_t Delaunay2::locate(Point2 p, uint32_t t) const {
   }
 }
 
-uint32_t Delaunay2::insert(Point2 p, uint32_t t, std::vector<uint32_t>* touched) {
+uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint32_t>* touched) {
   const uint32_t pv = static_cast<uint32_t>(points_.size());
   points_.push_back(p);
+  ranks_.push_back(rank);
   const auto v = tris_[t];
   const auto n = nbrs_[t];
   int on_edge = -1;
@@ -113,7 +121,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     int k = 0;
     while (nbrs_[u][k] != t) ++k;
     const uint32_t q = tris_[u][k];
-    if (!inCircleConflict(points_[p], points_[a1], points_[a2], points_[q])) continue;
+    if (!conflict(p, a1, a2, q)) continue;
     // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).
     const uint32_t t1 = nbrs_[t][1], t2 = nbrs_[t][2];                   // across a2-p, p-a1
     const uint32_t u1 = nbrs_[u][(k + 1) % 3], u2 = nbrs_[u][(k + 2) % 3];  // across a1-q, q-a2

@@ -2,7 +2,8 @@
 // rectangle whose four corners are vertices (spec 8.4). Points are added one
 // at a time (Lawson: split the triangle or edge that holds the point, then
 // flip edges that fail the perturbed in-circle test), so the triangulation is
-// always the unique perturbed Delaunay triangulation of the points added.
+// always the unique perturbed Delaunay triangulation of the points added,
+// each with its rank (spec 8.3).
 // Triangle slots are never freed: a split adds one or two, a flip reuses both.
 #pragma once
 
@@ -19,16 +20,19 @@ class Delaunay2 {
  public:
   static constexpr uint32_t kNone = UINT32_MAX;
 
-  // The rectangle [0, max_x] x [0, max_y] (both at least 1) as two triangles.
-  Delaunay2(int32_t max_x, int32_t max_y);
+  // The rectangle [0, max_x] x [0, max_y] (both at least 1) as two triangles;
+  // its corners (0, 0), (max_x, 0), (max_x, max_y), (0, max_y) have the ranks
+  // `corner_ranks` (by default 0 to 3).
+  Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks = nullptr);
 
   // A triangle holding p (inside or on its border), walking from `hint`.
   uint32_t locate(Point2 p, uint32_t hint) const;
 
-  // Adds p, which must lie in triangle `t` (inside or on an edge) and not be
-  // a vertex. The slots of every triangle made or changed are appended to
-  // `touched` (possibly more than once). Returns the new vertex's number.
-  uint32_t insert(Point2 p, uint32_t t, std::vector<uint32_t>* touched);
+  // Adds p with `rank` (distinct from every other vertex's), which must lie
+  // in triangle `t` (inside or on an edge) and not be a vertex. The slots of
+  // every triangle made or changed are appended to `touched` (possibly more
+  // than once). Returns the new vertex's number.
+  uint32_t insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint32_t>* touched);
 
   size_t vertexCount() const { return points_.size(); }
   size_t triangleCount() const { return tris_.size(); }
@@ -45,7 +49,10 @@ class Delaunay2 {
   // Flips edges opposite the new vertex until all are locally Delaunay.
   void legalize(std::vector<uint32_t>* touched);
 
+  bool conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
+
   std::vector<Point2> points_;
+  std::vector<uint64_t> ranks_;
   std::vector<std::array<uint32_t, 3>> tris_;
   std::vector<std::array<uint32_t, 3>> nbrs_;
   std::vector<uint32_t> stack_;  // triangles whose edge 0 (opposite the new vertex) awaits a test

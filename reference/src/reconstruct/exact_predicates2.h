@@ -1,5 +1,5 @@
 // Exact 2-D predicates on grid points, with the symbolic perturbation that
-// makes the Delaunay triangulation of any point set unique. spec: 8.3.
+// makes the Delaunay triangulation of any ranked point set unique. spec: 8.3.
 //
 // Coordinates are grid indices in [0, 2^16] (spec 8.1 bounds the sides), so
 // differences fit in 17 bits: orient2d's products in 35 bits (64-bit exact)
@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 
 namespace mrsv::reconstruct {
 
@@ -34,33 +35,30 @@ inline int incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
-// Lexicographic order (x, then y): the order of the symbolic perturbation.
+// Lexicographic order (x, then y).
 inline bool lexLess(Point2 p, Point2 q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
 
 // Whether d conflicts with the counter-clockwise triangle (a, b, c): inside
-// its circle, the cocircular case decided by the perturbation of spec 8.3
-// (Devillers and Teillaud): of the four points the lexicographically largest
-// is looked at first; if it is d, d is outside; if it is a vertex of the
-// triangle, the answer is the orientation of the triangle with that vertex
-// replaced by d, unless zero, in which case the next largest decides the
-// same way. Two steps always decide (the triangle is not degenerate and the
-// four points are distinct).
-inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d) {
+// its circle, the cocircular case decided by the symbolic perturbation of
+// Devillers and Teillaud over the points' ranks (spec 8.3; distinct numbers,
+// one per vertex): of the four points the one of highest rank is looked at
+// first; if it is d, d is outside; if it is a vertex of the triangle, the
+// answer is the orientation of the triangle with that vertex replaced by d,
+// unless zero, in which case the next highest decides the same way. Two steps
+// always decide (the triangle is not flat and the points are distinct).
+// With ranks in lexicographic order this is the rule of CGAL's
+// Delaunay_triangulation_2.
+inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d, const uint64_t rank[4]) {
   const int s = incircle(a, b, c, d);
   if (s != 0) return s > 0;
-  const Point2* pts[4] = {&a, &b, &c, &d};
-  // Sort the four pointers by decreasing lexicographic order (insertion sort).
+  int order[4] = {0, 1, 2, 3};  // by decreasing rank
   for (int i = 1; i < 4; ++i)
-    for (int j = i; j > 0 && lexLess(*pts[j - 1], *pts[j]); --j) {
-      const Point2* t = pts[j - 1];
-      pts[j - 1] = pts[j];
-      pts[j] = t;
-    }
+    for (int j = i; j > 0 && rank[order[j - 1]] < rank[order[j]]; --j) std::swap(order[j - 1], order[j]);
   for (int i = 0; i < 2; ++i) {
     int64_t o = 0;
-    if (pts[i] == &d) return false;
-    if (pts[i] == &c) o = orient2d(a, b, d);
-    else if (pts[i] == &b) o = orient2d(a, d, c);
+    if (order[i] == 3) return false;
+    if (order[i] == 2) o = orient2d(a, b, d);
+    else if (order[i] == 1) o = orient2d(a, d, c);
     else o = orient2d(d, b, c);
     if (o != 0) return o > 0;
   }

@@ -141,11 +141,13 @@ struct TerrainInserter::State {
     return false;
   }
 
+  // Every vertex's rank (spec 8.3) is its insertion number, corners 0 to 3:
+  // ties of cocircular vertices go to the older ones (decision D47).
   void insertSample(uint64_t sample, uint32_t hint) {
     const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
     const uint32_t t = dt.locate(p, hint);
     touched.clear();
-    dt.insert(p, t, &touched);
+    dt.insert(p, dt.vertexCount(), t, &touched);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
     vertex_value.push_back(field->values[sample]);
@@ -181,7 +183,7 @@ struct TerrainInserter::State {
         const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
         hint = dt.locate(p, hint);
         touched.clear();
-        dt.insert(p, hint, &touched);
+        dt.insert(p, dt.vertexCount(), hint, &touched);
         hint = touched.front();
         is_vertex[sample] = 1;
         vertex_sample.push_back(sample);
