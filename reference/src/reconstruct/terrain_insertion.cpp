@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <queue>
 
+#include "reconstruct/candidate_queue.h"
 #include "reconstruct/delaunay2.h"
 #include "reconstruct/line_insertion.h"
 
@@ -15,26 +16,8 @@ using reconstruct::Point2;
 
 namespace {
 
-// A triangle's worst lattice sample: error num / den (den = twice the
-// triangle's area), the sample's linear index breaking ties.
-struct Candidate {
-  __int128 num = 0;
-  int64_t den = 1;
-  uint64_t sample = 0;
-  uint32_t triangle = 0;
-  uint32_t version = 0;
-};
-
-// Larger error first, then the smaller sample index: the order of spec 8.5.
-bool worse(const Candidate& a, const Candidate& b) {
-  const __int128 l = a.num * b.den, r = b.num * a.den;
-  if (l != r) return l > r;
-  return a.sample < b.sample;
-}
-
-struct HeapOrder {
-  bool operator()(const Candidate& a, const Candidate& b) const { return worse(b, a); }
-};
+using reconstruct::Candidate;
+using reconstruct::CandidateQueue;
 
 int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
   return a >= 0 ? a / b : -((-a + b - 1) / b);
@@ -49,14 +32,19 @@ struct TerrainInserter::State {
   std::vector<uint8_t> is_vertex;       // per sample
   std::vector<uint64_t> vertex_sample;  // per vertex
   std::vector<int32_t> vertex_value;    // per vertex, from the last stage's field
-  std::vector<uint32_t> version;        // per triangle; heap entries of older versions are stale
-  std::priority_queue<Candidate, std::vector<Candidate>, HeapOrder> heap;
+  CandidateQueue queue;                 // triangles whose worst sample is beyond the bound
+  std::vector<double> worst_error;      // per triangle, for maxError() only
+  // This stage's bound: candidates within it are never inserted, so they are
+  // not queued (num < 0: no bound).
+  __int128 bound_num = -1;
+  int64_t bound_den = 1;
+  bool narrow = false;                  // errors fit 64-bit arithmetic this stage
   std::vector<uint32_t> touched;
   // The current stage.
   const SampleField* field = nullptr;
   int64_t step = 1;  // 2^shift
   bool skip_border = false;
-  Candidate last_max;
+  double last_error = 0;
 
   State(uint32_t x, uint32_t y) : nx(x), ny(y), dt(int32_t(x - 1), int32_t(y - 1)), is_vertex(uint64_t{x} * y) {
     for (uint32_t v = 0; v < 4; ++v) {
@@ -77,7 +65,14 @@ struct TerrainInserter::State {
 
   // spec 8.5: a triangle's worst lattice sample, exactly.
   void scan(uint32_t t) {
-    ++version[t];
+    if (narrow) scanWith<int64_t>(t);
+    else scanWith<__int128>(t);
+  }
+
+  // W holds |value - za| * den and the interpolant's numerator: int64_t when
+  // the stage's value range allows (checked in refine()), else __int128.
+  template <class W>
+  void scanWith(uint32_t t) {
     const auto& tv = dt.triangle(t);
     const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
     const int64_t za = vertex_value[tv[0]], zb = vertex_value[tv[1]] - za, zc = vertex_value[tv[2]] - za;
@@ -98,14 +93,31 @@ struct TerrainInserter::State {
     }
     Candidate best;
     best.den = den;
-    best.triangle = t;
-    best.version = version[t];
     bool found = false;
     const int32_t* values = field->values.data();
+    // Narrow triangles (most, once the mesh is fine) test each lattice
+    // point of the bounding box; wide ones solve each row's range, which
+    // costs divisions.
+    const bool narrow_box = x1 - x0 <= 16 * step;
     forLattice(y0, y1, ny, [&](int64_t y) {
-      // The x range where all three barycentric numerators are >= 0.
       int64_t lo = x0, hi = x1;
-      for (const Edge& e : {ea, eb, ec}) {
+      if (narrow_box) {
+        int64_t wa = ea.ex * x0 + ea.ey * y + ea.e0, wb = eb.ex * x0 + eb.ey * y + eb.e0,
+                wc = ec.ex * x0 + ec.ey * y + ec.e0;
+        // From x0 (not necessarily on the lattice) to the lattice's first point.
+        const int64_t first = ceilDiv(x0, step) * step;
+        wa += ea.ex * (first - x0), wb += eb.ex * (first - x0), wc += ec.ex * (first - x0);
+        lo = INT64_MAX, hi = INT64_MIN;
+        for (int64_t x = first; x <= x1; x += step, wa += ea.ex * step, wb += eb.ex * step, wc += ec.ex * step)
+          if ((wa | wb | wc) >= 0) lo = std::min(lo, x), hi = x;
+        const int64_t last = int64_t{nx} - 1;
+        if (last % step != 0 && x0 <= last && last <= x1 && (ea.ex * last + ea.ey * y + ea.e0) >= 0 &&
+            (eb.ex * last + eb.ey * y + eb.e0) >= 0 && (ec.ex * last + ec.ey * y + ec.e0) >= 0)
+          lo = std::min(lo, last), hi = last;
+        if (lo > hi) return;
+      }
+      // The x range where all three barycentric numerators are >= 0.
+      if (!narrow_box) for (const Edge& e : {ea, eb, ec}) {
         const int64_t r = -(e.ey * y + e.e0);  // need ex * x >= r
         if (e.ex > 0) lo = std::max(lo, ceilDiv(r, e.ex));
         else if (e.ex < 0) hi = std::min(hi, floorDiv(-r, -e.ex));
@@ -113,32 +125,32 @@ struct TerrainInserter::State {
       }
       if (lo > hi) return;
       const int64_t row = y * nx;
-      forLattice(lo, hi, nx, [&](int64_t x) {
-        const int64_t wb = eb.ex * x + eb.ey * y + eb.e0, wc = ec.ex * x + ec.ey * y + ec.e0;
-        __int128 e = __int128{values[row + x] - za} * den - (__int128{wb} * zb + __int128{wc} * zc);
+      // The interpolant's numerator wb zb + wc zc steps by a constant along
+      // the row's multiples of step; the last column (n - 1) is on its own.
+      // Samples come in increasing index order: on a tie the first stays.
+      const auto consider = [&](int64_t x, W e) {
         if (e < 0) e = -e;
-        // Samples come in increasing index order: on a tie the first stays.
-        if (e > best.num) {
+        if (e > W(best.num)) {
           best.num = e;
           best.sample = uint64_t(row + x);
           found = true;
         }
-      });
-    });
-    if (found) heap.push(best);
-  }
-
-  // The worst candidate still current, or false when none is left.
-  bool top(Candidate* out) {
-    while (!heap.empty()) {
-      const Candidate& c = heap.top();
-      if (c.version == version[c.triangle]) {
-        *out = c;
-        return true;
+      };
+      const int64_t first = ceilDiv(lo, step) * step;
+      if (first <= hi) {
+        const W dz = W(eb.ex) * step * zb + W(ec.ex) * step * zc;
+        W interp = W(eb.ex * first + eb.ey * y + eb.e0) * zb + W(ec.ex * first + ec.ey * y + ec.e0) * zc;
+        const int32_t* v = values + row;
+        for (int64_t x = first; x <= hi; x += step, interp += dz) consider(x, W(v[x] - za) * den - interp);
       }
-      heap.pop();
-    }
-    return false;
+      const int64_t last = int64_t{nx} - 1;
+      if (last % step != 0 && lo <= last && last <= hi)
+        consider(last, W(values[row + last] - za) * den -
+                           (W(eb.ex * last + eb.ey * y + eb.e0) * zb + W(ec.ex * last + ec.ey * y + ec.e0) * zc));
+    });
+    worst_error[t] = found ? double(best.num) / double(best.den) : 0.0;
+    if (found && (bound_num < 0 || best.num * bound_den > bound_num * best.den)) queue.set(t, best);
+    else queue.remove(t);
   }
 
   // Every vertex's rank (spec 8.3) is its insertion number, corners 0 to 3:
@@ -151,7 +163,7 @@ struct TerrainInserter::State {
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
     vertex_value.push_back(field->values[sample]);
-    version.resize(dt.triangleCount(), 0);
+    worst_error.resize(dt.triangleCount(), 0.0);
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (uint32_t s : touched) scan(s);
@@ -222,31 +234,38 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   const int64_t bound_den = limits.max_error.den;
   const bool border = limits.border_rule && limits.max_error.set();
   if (border) s.borderRule(bound_num, bound_den);
-  s.version.assign(s.dt.triangleCount(), 0);
-  s.heap = {};
+  s.worst_error.assign(s.dt.triangleCount(), 0.0);
+  s.bound_num = limits.max_error.set() ? bound_num : -1;
+  s.bound_den = bound_den;
+  s.queue.clear();
+  // 64-bit errors when |value - za| * den and |wb zb + wc zc| stay below 2^62:
+  // den <= 2 nx ny, the weights sum to den.
+  const auto [lo, hi] = std::minmax_element(field.values.begin(), field.values.end());
+  const __int128 range = field.values.empty() ? 0 : __int128{*hi} - *lo;
+  s.narrow = range * 4 * s.nx * s.ny < (__int128{1} << 62);
   s.skip_border = border;
   for (uint32_t t = 0; t < s.dt.triangleCount(); ++t) s.scan(t);
 
   uint64_t since_progress = 0;
-  Candidate worst;
-  while (s.top(&worst)) {
+  while (!s.queue.empty()) {
+    const uint32_t worst_triangle = s.queue.top();
+    const Candidate worst = s.queue.candidate(worst_triangle);
     if (limits.max_error.set() &&
         worst.num * bound_den <= bound_num * worst.den)
       break;
     if (limits.max_cells != 0 && s.dt.triangleCount() >= limits.max_cells) break;
-    s.insertSample(worst.sample, worst.triangle);
+    s.insertSample(worst.sample, worst_triangle);
     if (progress && ++since_progress == 4096) {
       since_progress = 0;
       if (!progress(s.dt.triangleCount())) break;
     }
   }
-  if (!s.top(&s.last_max)) s.last_max = Candidate{};
+  s.last_error = 0;
+  for (double e : s.worst_error) s.last_error = std::max(s.last_error, e);
   return true;
 }
 
-double TerrainInserter::maxError() const {
-  return static_cast<double>(state_->last_max.num) / static_cast<double>(state_->last_max.den);
-}
+double TerrainInserter::maxError() const { return state_->last_error; }
 
 uint64_t TerrainInserter::vertexCount() const { return state_->dt.vertexCount(); }
 uint64_t TerrainInserter::cellCount() const { return state_->dt.triangleCount(); }

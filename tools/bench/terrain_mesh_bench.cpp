@@ -1,0 +1,219 @@
+// tools/bench/terrain_mesh_bench: issue 22's terrain goals, with the peers
+// measured in the same run. For each real terrain of ../shared/data (the
+// SRTM tiles with their voids filled as the decoder synthesises them, Big
+// Tujunga, St Helens), coded as a lossless progressive MRSV stream:
+//   - Delaunay insertion (spec 8.5) against Delatin 0.2.0 (node): triangles,
+//     time, and the largest error over every sample, measured exactly here;
+//   - progressive insertion (spec 8.7, stages per wavelet level) against one
+//     stage: triangles, and the vertex sets nested;
+//   - on the largest 2^k + 1 square crop, MARTINI (node) and, when built,
+//     the quadtree (spec 9).
+//
+//   terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick]
+//
+// DIR holds node_modules with delatin and @mapbox/martini (tools/bench/
+// setup_peers.sh installs them into build/node_peers).
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "grid_mesh_checks.h"
+#include "mrsv/encode.h"
+#include "mrsv/grid.h"
+#include "mrsv/grid_mesh.h"
+#include "mrsv/terrain_insertion.h"
+#include "shared_data.h"
+
+namespace {
+
+using namespace mrsv;
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+struct PeerResult {
+  double ms = 0;
+  GridMesh mesh;
+  bool ok = false;
+};
+
+// Runs terrain_peers.mjs on `field` and reads back one mesh per error.
+std::vector<PeerResult> runPeer(const std::string& peers, const std::string& tool, const SampleField& field,
+                                const std::vector<std::string>& errors, const std::string& scratch) {
+  std::vector<PeerResult> out(errors.size());
+  const std::string heights = scratch + "/heights.f32";
+  {
+    std::vector<float> h(field.values.begin(), field.values.end());
+    std::ofstream f(heights, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(h.data()), std::streamsize(h.size() * sizeof(float)));
+  }
+  std::string list;
+  for (const auto& e : errors) list += (list.empty() ? "" : ",") + e;
+  const std::string cmd = "node " + std::string(MRSV_SOURCE_DIR) + "/tools/bench/terrain_peers.mjs " + peers + " " +
+                          tool + " " + heights + " " + std::to_string(field.size[0]) + " " +
+                          std::to_string(field.size[1]) + " " + list + " " + scratch + "/" + tool + "_";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char line[512];
+  size_t k = 0;
+  while (fgets(line, sizeof line, p) && k < errors.size()) {
+    const char* ms = std::strstr(line, "\"ms\":");
+    if (!ms) continue;
+    out[k].ms = std::atof(ms + 5);
+    std::ifstream f(scratch + "/" + tool + "_" + errors[k] + ".bin", std::ios::binary);
+    uint32_t nv = 0, nt = 0;
+    f.read(reinterpret_cast<char*>(&nv), 4);
+    f.read(reinterpret_cast<char*>(&nt), 4);
+    std::vector<uint32_t> data(size_t(nv) * 2 + size_t(nt) * 3);
+    f.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * 4));
+    GridMesh& m = out[k].mesh;
+    m.dims = 2;
+    m.size[0] = field.size[0], m.size[1] = field.size[1], m.size[2] = 1;
+    for (uint32_t v = 0; v < nv; ++v) {
+      m.points.push_back({data[2 * v], data[2 * v + 1], 0});
+      m.values.push_back(field.at(data[2 * v], data[2 * v + 1]));
+    }
+    // Peers' triangles may turn either way (y down): orient them counter-clockwise.
+    for (uint32_t t = 0; t < nt; ++t) {
+      std::array<uint32_t, 4> c = {data[2 * nv + 3 * t], data[2 * nv + 3 * t + 1], data[2 * nv + 3 * t + 2], 0};
+      const auto &a = m.points[c[0]], &b = m.points[c[1]], &d = m.points[c[2]];
+      const int64_t cross = (int64_t(b[0]) - a[0]) * (int64_t(d[1]) - a[1]) - (int64_t(b[1]) - a[1]) * (int64_t(d[0]) - a[0]);
+      if (cross < 0) std::swap(c[1], c[2]);
+      if (cross != 0) m.cells.push_back(c);
+    }
+    out[k].ok = true;
+    ++k;
+  }
+  pclose(p);
+  return out;
+}
+
+double worstError(const SampleField& f, const GridMesh& m, const ErrorBound& bound, bool* within) {
+  double worst = 0;
+  *within = test::withinBoundEverywhere(f, m, bound, &worst);
+  return worst;
+}
+
+struct Terrain {
+  std::string file;
+  std::string label;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string peers = std::string(MRSV_SOURCE_DIR) + "/build/node_peers";
+  std::vector<std::string> errors = {"1", "5", "20", "50"};
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--peers" && i + 1 < argc) peers = argv[++i];
+    else if (a == "--errors" && i + 1 < argc) {
+      errors.clear();
+      std::stringstream ss(argv[++i]);
+      for (std::string e; std::getline(ss, e, ',');) errors.push_back(e);
+    } else if (a == "--quick") quick = true;
+    else {
+      std::fprintf(stderr, "usage: terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick]\n");
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  struct stat st;
+  const bool have_peers = stat((peers + "/node_modules/delatin").c_str(), &st) == 0;
+  if (!have_peers)
+    std::fprintf(stderr, "terrain_mesh_bench: no %s/node_modules/delatin: run tools/bench/setup_peers.sh (peers skipped)\n",
+                 peers.c_str());
+  char scratch_template[] = "/tmp/mrsv-terrain-bench-XXXXXX";
+  const std::string scratch = mkdtemp(scratch_template);
+
+  std::vector<Terrain> terrains = {{"mt_st_helens_317x460_int16le.raw.zst", "St Helens 317x460"},
+                                   {"big_tujunga_1197x643_int16le.raw.zst", "Big Tujunga 1197x643"},
+                                   {"srtm3_N35E138_mt_fuji_1201x1201_int16le.raw.zst", "SRTM Fuji 1201^2"},
+                                   {"srtm3_N46W122_mt_rainier_1201x1201_int16le.raw.zst", "SRTM Rainier 1201^2"},
+                                   {"srtm3_N27E086_mt_everest_1201x1201_int16le.raw.zst", "SRTM Everest 1201^2"}};
+  if (quick) terrains.resize(2);
+
+  std::printf("## Delaunay insertion against Delatin (every sample checked)\n\n");
+  std::printf("| terrain | max error | Delatin triangles | MRSV triangles | ratio | Delatin ms | MRSV ms | speed-up | Delatin worst | MRSV worst | progressive triangles | progressive / single |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Terrain& t : terrains) {
+    test::SharedGrid g;
+    if (!test::loadSharedGrid(std::string(MRSV_SHARED_DATA) + "/terrain/" + t.file, &g)) return 1;
+    if (t.file.find("srtm3") != std::string::npos) {
+      g.header.grid_flags |= kGridFlagHasNodata;
+      g.header.nodata_bits = uint64_t(uint16_t(int16_t(-32768)));
+    }
+    WaveletEncodeOptions options;
+    options.max_error = 0;
+    options.progressive = true;
+    std::vector<uint8_t> stream;
+    if (Error e = encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, nullptr); !e.ok()) {
+      std::fprintf(stderr, "%s: encode failed: %s\n", t.file.c_str(), e.describe().c_str());
+      return 1;
+    }
+    DecodeOptions decode;
+    decode.void_values = true;
+    DecodedGrid grid;
+    if (Error e = decodeGrid(stream.data(), stream.size(), decode, &grid); !e.ok()) return 1;
+    SampleField field;
+    std::string error;
+    if (!sampleFieldFromGrid(grid, &field, &error)) return 1;
+    // The prefixes' fields for the progressive stages.
+    const std::vector<ReconstructionStage> stages = reconstructionStages(grid, stream.size());
+    std::vector<SampleField> stage_fields(stages.size());
+    for (size_t k = 0; k < stages.size(); ++k) {
+      DecodedGrid prefix;
+      decodeGrid(stream.data(), stages[k].bytes, decode, &prefix);
+      sampleFieldFromGrid(prefix, &stage_fields[k], &error);
+    }
+
+    std::vector<PeerResult> delatin;
+    if (have_peers) delatin = runPeer(peers, "delatin", field, errors, scratch);
+    for (size_t k = 0; k < errors.size(); ++k) {
+      ErrorBound bound;
+      parseErrorBound(errors[k], &bound);
+      InsertionLimits limits;
+      limits.max_error = bound;
+      TerrainInserter single(field.size[0], field.size[1]);
+      const double t0 = now();
+      single.refine(field, 0, limits, &error);
+      const double ms = (now() - t0) * 1000;
+      GridMesh ours;
+      single.mesh(&ours);
+      bool ours_ok = false;
+      const double ours_worst = worstError(field, ours, bound, &ours_ok);
+      TerrainInserter progressive(field.size[0], field.size[1]);
+      for (size_t s = 0; s < stages.size(); ++s) progressive.refine(stage_fields[s], stages[s].shift, limits, &error);
+      GridMesh prog;
+      progressive.mesh(&prog);
+      bool prog_ok = false;
+      worstError(field, prog, bound, &prog_ok);
+      char peer[256] = "| n/a | | | n/a | | | n/a ";
+      if (k < delatin.size() && delatin[k].ok) {
+        bool within = false;
+        const double worst = worstError(field, delatin[k].mesh, bound, &within);
+        std::snprintf(peer, sizeof peer, "| %zu | %zu | %.3f | %.0f | %.0f | %.1fx | %.2f%s ", delatin[k].mesh.cells.size(),
+                      ours.cells.size(), double(ours.cells.size()) / delatin[k].mesh.cells.size(), delatin[k].ms, ms,
+                      delatin[k].ms / ms, worst, within ? "" : " (over)");
+      } else {
+        std::snprintf(peer, sizeof peer, "| n/a | %zu | | n/a | %.0f | | n/a ", ours.cells.size(), ms);
+      }
+      std::printf("| %s | %s m %s| %.2f%s | %zu%s | %.3f |\n", t.label.c_str(), errors[k].c_str(), peer, ours_worst,
+                  ours_ok ? "" : " (over)", prog.cells.size(), prog_ok ? "" : " (over)",
+                  double(prog.cells.size()) / ours.cells.size());
+      std::fflush(stdout);
+    }
+  }
+  std::string rm = "rm -rf " + scratch;
+  if (std::system(rm.c_str()) != 0) return 1;
+  return 0;
+}
