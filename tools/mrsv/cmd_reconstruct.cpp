@@ -133,13 +133,10 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, out + ": a 3-D grid gives a tet mesh: write .vtu, .vtk, .mesh or .node", kExitUsage);
 
   // spec 8.7: the stages, less the K finest levels.
-  std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size());
-  if (levels > 0) {
-    while (!stages.empty() && stages.back().shift < levels) stages.pop_back();
-    if (stages.empty())
-      return fail(cmd, in + ": --levels " + std::to_string(levels) + " leaves no complete level in the bytes read",
-                  kExitInvalidData);
-  }
+  std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size(), unsigned(levels));
+  if (stages.empty())
+    return fail(cmd, in + ": --levels " + std::to_string(levels) + " leaves no complete level in the bytes read",
+                kExitInvalidData);
   if (!req.progressive) stages.erase(stages.begin(), stages.end() - 1);
 
   const auto start = std::chrono::steady_clock::now();

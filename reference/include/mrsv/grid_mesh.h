@@ -48,15 +48,16 @@ bool parseErrorBound(const std::string& text, ErrorBound* bound);
 
 // spec 8.7: the stages in which a stream's bytes refine a mesh, coarse to
 // fine. Stage k reads the first `bytes` bytes (a prefix ending with the last
-// band of a level, or all of `size`) and its lattice has step 2^shift. A
-// stored grid, or a wavelet grid whose bytes end before the first level is
-// complete, has one stage. `grid` is the one-shot decode of all the bytes
-// (decodeGrid with `size`).
+// band of a level; the last stage: all of `size`) and its lattice has step
+// 2^shift. A stored grid, or a wavelet grid whose bytes hold no complete
+// band, has one stage. `levels` > 0 drops the stages with shift < levels (the
+// last stage left then ends at its band's chunk); the result may be empty.
+// `grid` is the one-shot decode of all the bytes (decodeGrid with `size`).
 struct ReconstructionStage {
   uint64_t bytes = 0;
   unsigned shift = 0;
 };
-std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, uint64_t size);
+std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, uint64_t size, unsigned levels = 0);
 
 // An adaptive mesh whose vertices are grid points. 2-D: triangles, counter-
 // clockwise seen from +z (x right, y up), cell[3] unused; 3-D: tets, positively

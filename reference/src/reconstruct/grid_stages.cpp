@@ -6,13 +6,15 @@
 
 namespace mrsv {
 
-std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, uint64_t size) {
+std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, uint64_t size, unsigned levels) {
   std::vector<ReconstructionStage> stages;
-  if (grid.header.coding != GridCoding::kWavelet || grid.bands_decoded == 0) return {{size, 0}};
+  const std::vector<ReconstructionStage> whole = levels == 0 ? std::vector<ReconstructionStage>{{size, 0}}
+                                                               : std::vector<ReconstructionStage>{};
+  if (grid.header.coding != GridCoding::kWavelet || grid.bands_decoded == 0) return whole;
   const uint32_t samples[3] = {grid.header.size_x, grid.header.size_y, grid.header.size_z};
-  const int levels[3] = {grid.wavelet.levels[0], grid.wavelet.levels[1], grid.wavelet.levels[2]};
+  const int axis_levels[3] = {grid.wavelet.levels[0], grid.wavelet.levels[1], grid.wavelet.levels[2]};
   wavelet::GridPlan plan;
-  if (!wavelet::makeGridPlan(grid.header.num_dims, samples, grid.wavelet.order, levels, &plan)) return {{size, 0}};
+  if (!wavelet::makeGridPlan(grid.header.num_dims, samples, grid.wavelet.order, axis_levels, &plan)) return whole;
   const std::vector<wavelet::Band> bands = wavelet::bandsOf(plan);
   // The end of each band's chunk, in band order.
   std::vector<uint64_t> band_end;
@@ -25,10 +27,14 @@ std::vector<ReconstructionStage> reconstructionStages(const DecodedGrid& grid, u
     const bool level_done = j == bands.size() || bands[j].level < bands[j - 1].level || bands[j - 1].mask == 0;
     if (level_done) stages.push_back({band_end[j - 1], unsigned(j == 1 ? plan.maxLevels() : bands[j - 1].level - 1)});
   }
-  if (stages.empty()) return {{size, 0}};
-  // The last stage reads every byte given (a residual after the bands, or
-  // bands of an incomplete level, refine its samples).
-  stages.back().bytes = size;
+  if (stages.empty()) return whole;
+  if (levels == 0) {
+    // The last stage reads every byte given (a residual after the bands, or
+    // bands of an incomplete level, refine its samples).
+    stages.back().bytes = size;
+    return stages;
+  }
+  while (!stages.empty() && stages.back().shift < levels) stages.pop_back();
   return stages;
 }
 
