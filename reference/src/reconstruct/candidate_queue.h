@@ -31,24 +31,25 @@ class CandidateQueue {
   void clear() {
     heap_.clear();
     pos_.clear();
-    key_.clear();
     cand_.clear();
   }
   bool empty() const { return heap_.empty(); }
-  uint32_t top() const { return heap_.front(); }
+  uint32_t top() const { return heap_.front().cell; }
   const Candidate& candidate(uint32_t cell) const { return cand_[cell]; }
 
   // Sets (or replaces) the entry of `cell`.
   void set(uint32_t cell, const Candidate& c) {
     grow(cell);
     cand_[cell] = c;
-    key_[cell] = double(c.num) / double(c.den);
+    const Entry e{double(c.num) / double(c.den), cell};
     if (pos_[cell] == kAbsent) {
-      pos_[cell] = uint32_t(heap_.size());
-      heap_.push_back(cell);
+      heap_.push_back(e);
+      siftUp(uint32_t(heap_.size() - 1), e);
+      return;
     }
-    siftUp(pos_[cell]);
-    siftDown(pos_[cell]);
+    const uint32_t i = pos_[cell];
+    if (i > 0 && before(e, heap_[(i - 1) / 2])) siftUp(i, e);
+    else siftDown(i, e);
   }
 
   // Removes the entry of `cell`, if any.
@@ -56,63 +57,62 @@ class CandidateQueue {
     if (cell >= pos_.size() || pos_[cell] == kAbsent) return;
     const uint32_t i = pos_[cell];
     pos_[cell] = kAbsent;
-    const uint32_t last = heap_.back();
+    const Entry last = heap_.back();
     heap_.pop_back();
-    if (last == cell) return;
-    heap_[i] = last;
-    pos_[last] = i;
-    siftUp(i);
-    siftDown(pos_[last]);
+    if (last.cell == cell) return;
+    if (i > 0 && before(last, heap_[(i - 1) / 2])) siftUp(i, last);
+    else siftDown(i, last);
   }
 
  private:
+  // The error as a double beside the cell, so that most comparisons read the
+  // heap array alone.
+  struct Entry {
+    double key;
+    uint32_t cell;
+  };
+
   void grow(uint32_t cell) {
     if (cell < pos_.size()) return;
     const size_t n = size_t(cell) + 1 + (size_t(cell) >> 1);
     pos_.resize(n, kAbsent);
-    key_.resize(n, 0.0);
     cand_.resize(n);
   }
-  // Whether cell a comes before cell b. Doubles carry 53 bits: keys further
-  // apart than 2^-40 relative are in the exact order; closer ones are
-  // compared exactly.
-  bool before(uint32_t a, uint32_t b) const {
-    const double ka = key_[a], kb = key_[b];
-    if (ka > kb * (1 + 0x1p-40)) return true;
-    if (kb > ka * (1 + 0x1p-40)) return false;
-    return worse(cand_[a], cand_[b]);
+  // Whether a comes before b. Doubles carry 53 bits: keys further apart than
+  // 2^-40 relative are in the exact order; closer ones are compared exactly.
+  bool before(const Entry& a, const Entry& b) const {
+    if (a.key > b.key * (1 + 0x1p-40)) return true;
+    if (b.key > a.key * (1 + 0x1p-40)) return false;
+    return worse(cand_[a.cell], cand_[b.cell]);
   }
-  void place(uint32_t i, uint32_t cell) {
-    heap_[i] = cell;
-    pos_[cell] = i;
+  void place(uint32_t i, const Entry& e) {
+    heap_[i] = e;
+    pos_[e.cell] = i;
   }
-  void siftUp(uint32_t i) {
-    const uint32_t cell = heap_[i];
+  void siftUp(uint32_t i, const Entry& e) {
     while (i > 0) {
       const uint32_t parent = (i - 1) / 2;
-      if (!before(cell, heap_[parent])) break;
+      if (!before(e, heap_[parent])) break;
       place(i, heap_[parent]);
       i = parent;
     }
-    place(i, cell);
+    place(i, e);
   }
-  void siftDown(uint32_t i) {
-    const uint32_t cell = heap_[i];
+  void siftDown(uint32_t i, const Entry& e) {
     const uint32_t n = uint32_t(heap_.size());
     for (;;) {
       uint32_t child = 2 * i + 1;
       if (child >= n) break;
       if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
-      if (!before(heap_[child], cell)) break;
+      if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;
     }
-    place(i, cell);
+    place(i, e);
   }
 
-  std::vector<uint32_t> heap_;  // cells
-  std::vector<uint32_t> pos_;   // per cell: index in heap_, or kAbsent
-  std::vector<double> key_;     // per cell: the error as a double
+  std::vector<Entry> heap_;
+  std::vector<uint32_t> pos_;    // per cell: index in heap_, or kAbsent
   std::vector<Candidate> cand_;  // per cell
 };
 

@@ -57,10 +57,11 @@ struct TerrainInserter::State {
 
   // The lattice coordinates of an axis of n samples within [lo, hi], in order:
   // multiples of step, and n - 1.
+  // (lo >= 0; step is a power of 2.)
   template <class F>
   void forLattice(int64_t lo, int64_t hi, int64_t n, F&& f) const {
-    for (int64_t c = ceilDiv(lo, step) * step; c <= hi; c += step) f(c);
-    if ((n - 1) % step != 0 && lo <= n - 1 && n - 1 <= hi) f(n - 1);
+    for (int64_t c = (lo + step - 1) & ~(step - 1); c <= hi; c += step) f(c);
+    if (((n - 1) & (step - 1)) != 0 && lo <= n - 1 && n - 1 <= hi) f(n - 1);
   }
 
   // spec 8.5: a triangle's worst lattice sample, exactly.
@@ -99,19 +100,20 @@ struct TerrainInserter::State {
     // point of the bounding box; wide ones solve each row's range, which
     // costs divisions.
     const bool narrow_box = x1 - x0 <= 16 * step;
+    const bool last_x_apart = ((int64_t{nx} - 1) & (step - 1)) != 0;  // the last column is not a multiple of step
     forLattice(y0, y1, ny, [&](int64_t y) {
       int64_t lo = x0, hi = x1;
       if (narrow_box) {
         int64_t wa = ea.ex * x0 + ea.ey * y + ea.e0, wb = eb.ex * x0 + eb.ey * y + eb.e0,
                 wc = ec.ex * x0 + ec.ey * y + ec.e0;
         // From x0 (not necessarily on the lattice) to the lattice's first point.
-        const int64_t first = ceilDiv(x0, step) * step;
+        const int64_t first = (x0 + step - 1) & ~(step - 1);
         wa += ea.ex * (first - x0), wb += eb.ex * (first - x0), wc += ec.ex * (first - x0);
         lo = INT64_MAX, hi = INT64_MIN;
         for (int64_t x = first; x <= x1; x += step, wa += ea.ex * step, wb += eb.ex * step, wc += ec.ex * step)
           if ((wa | wb | wc) >= 0) lo = std::min(lo, x), hi = x;
         const int64_t last = int64_t{nx} - 1;
-        if (last % step != 0 && x0 <= last && last <= x1 && (ea.ex * last + ea.ey * y + ea.e0) >= 0 &&
+        if (last_x_apart && x0 <= last && last <= x1 && (ea.ex * last + ea.ey * y + ea.e0) >= 0 &&
             (eb.ex * last + eb.ey * y + eb.e0) >= 0 && (ec.ex * last + ec.ey * y + ec.e0) >= 0)
           lo = std::min(lo, last), hi = last;
         if (lo > hi) return;
@@ -136,7 +138,7 @@ struct TerrainInserter::State {
           found = true;
         }
       };
-      const int64_t first = ceilDiv(lo, step) * step;
+      const int64_t first = (lo + step - 1) & ~(step - 1);  // lo >= 0
       if (first <= hi) {
         const W dz = W(eb.ex) * step * zb + W(ec.ex) * step * zc;
         W interp = W(eb.ex * first + eb.ey * y + eb.e0) * zb + W(ec.ex * first + ec.ey * y + ec.e0) * zc;
@@ -144,7 +146,7 @@ struct TerrainInserter::State {
         for (int64_t x = first; x <= hi; x += step, interp += dz) consider(x, W(v[x] - za) * den - interp);
       }
       const int64_t last = int64_t{nx} - 1;
-      if (last % step != 0 && lo <= last && last <= hi)
+      if (last_x_apart && lo <= last && last <= hi)
         consider(last, W(values[row + last] - za) * den -
                            (W(eb.ex * last + eb.ey * y + eb.e0) * zb + W(ec.ex * last + ec.ey * y + ec.e0) * zc));
     });
