@@ -322,6 +322,23 @@ TEST(Quadtree, RefusesWhatItCannotMesh) {
   EXPECT_FALSE(error.empty());
 }
 
+// Informative (printed, not asserted): the whole St Helens and Big Tujunga
+// grids (sizes not 2^k + 1), with and without the tile border rule.
+TEST(Quadtree, TerrainCounts) {
+  for (const char* name : {"mt_st_helens", "big_tujunga"}) {
+    const bool helens = std::string(name) == "mt_st_helens";
+    const SampleField f = terrainWindow(name, 0, 0, helens ? 317 : 1197, helens ? 460 : 643);
+    for (int64_t e : {1, 5, 20, 50}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const GridMesh m = meshAt(f, e);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const GridMesh tiled = meshAt(f, e, true);
+      std::printf("[quadtree] %s E=%lld m: %zu triangles (%.1f ms), with tile borders %zu\n", name,
+                  static_cast<long long>(e), m.cells.size(), ms, tiled.cells.size());
+    }
+  }
+}
+
 // Informative (printed, not asserted): triangles and time on whole SRTM
 // tiles with their voids given the synthesised values of a stream.
 TEST(Quadtree, SrtmTileCounts) {
