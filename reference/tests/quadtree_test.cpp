@@ -333,6 +333,11 @@ TEST(Quadtree, TerrainCounts) {
       const GridMesh m = meshAt(f, e);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       const GridMesh tiled = meshAt(f, e, true);
+      if (helens) {
+        const GridMesh window = meshAt(terrainWindow(name, 0, 0, 257, 257), e);
+        std::printf("[quadtree] %s 257x257 window E=%lld: %zu triangles\n", name, static_cast<long long>(e),
+                    window.cells.size());
+      }
       std::printf("[quadtree] %s E=%lld m: %zu triangles (%.1f ms), with tile borders %zu\n", name,
                   static_cast<long long>(e), m.cells.size(), ms, tiled.cells.size());
     }
@@ -373,8 +378,13 @@ TEST(Quadtree, SrtmTileCounts) {
         best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       }
       EXPECT_EQ(worstOver(f, m, ErrorBound{e, 1}), 0);
-      std::printf("[quadtree] %s 1201x1201 E=%lld m: %zu triangles, %zu vertices, %.1f ms\n", name,
-                  static_cast<long long>(e), m.cells.size(), m.points.size(), best);
+      QuadtreeOptions o;
+      o.threshold = ErrorBound{e, 1};
+      QuadtreeReport report;
+      GridMesh again;
+      ASSERT_TRUE(quadtreeMesh(f, nullptr, o, &again, &error, &report));
+      std::printf("[quadtree] %s 1201x1201 E=%lld m: %zu triangles, %zu vertices, %.1f ms, %u rounds\n", name,
+                  static_cast<long long>(e), m.cells.size(), m.points.size(), best, report.rounds);
     }
   }
 }
