@@ -9,6 +9,11 @@ namespace mrsv {
 
 Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
                  DecodedGrid* out) {
+  return decodeGridKeepingCoefficients(data, size, options, out, nullptr);
+}
+
+Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const DecodeOptions& options,
+                                    DecodedGrid* out, WaveletCoefficients* coefficients) {
   *out = DecodedGrid{};
   if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
   const Container& c = out->container;
@@ -33,7 +38,7 @@ Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
         return e;
     }
   }
-  if (h.coding == GridCoding::kWavelet) return decodeWaveletGrid(options, out);
+  if (h.coding == GridCoding::kWavelet) return decodeWaveletGrid(options, out, coefficients);
 
   bool seen_stored = false;
   for (size_t i = 1; i < c.chunks.size(); ++i) {

@@ -119,6 +119,7 @@ struct WaveletState {
   bool void_values = false;           // DecodeOptions::void_values: the mask is not applied to samples
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
+  WaveletCoefficients* keep = nullptr;  // see decodeWaveletGrid()
 };
 
 ArrayBox gridBox(const GridHeader& g) {
@@ -469,6 +470,10 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
         std::fill(row, row + band.size[0], 0);
       }
   }
+  if (s->keep && !s->last_level) {
+    s->keep->plan = s->plan;
+    s->keep->values.assign(s->coefficients.get(), s->coefficients.get() + s->plan.paddedCount());
+  }
 
   // Output box: the low-pass block of level `stop`, cut to what covers the grid.
   uint32_t size[3];
@@ -548,10 +553,12 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
 
 }  // namespace
 
-Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out) {
+Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
+                        WaveletCoefficients* coefficients) {
   const Container& c = out->container;
   WaveletState s;
   s.grid = &out->header;
+  s.keep = coefficients;
   for (size_t i = 1; i < c.chunks.size(); ++i) {
     const ChunkView& chunk = c.chunks[i];
     const ChunkType& t = chunk.chunk_type;

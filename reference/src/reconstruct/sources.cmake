@@ -33,3 +33,13 @@ endfunction()
 if(NOT MRSV_DECODER_ONLY AND CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)
   cmake_language(DEFER CALL mrsv_add_terrain_mesh_bench)
 endif()
+
+# Quadtree vertex removal (spec 9).
+list(APPEND MRSV_RECONSTRUCT_SOURCES
+  reference/src/reconstruct/detail_signal.cpp
+  reference/src/reconstruct/quadtree_border.cpp
+  reference/src/reconstruct/quadtree_error.cpp
+  reference/src/reconstruct/quadtree_mesh.cpp
+  reference/src/reconstruct/quadtree_tree.cpp)
+list(APPEND MRSV_RECONSTRUCT_TESTS
+  reference/tests/quadtree_test.cpp)

@@ -1,0 +1,88 @@
+// spec: 9.4 the max-error test of a triangle, 9.5 of a border run.
+#include "reconstruct/quadtree_error.h"
+
+#include <algorithm>
+
+namespace mrsv::quadtree {
+namespace {
+
+int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
+  const int64_t q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+}  // namespace
+
+ErrorTest::ErrorTest(const SampleField& field, const ErrorBound& bound)
+    : field_(field), bound_(bound) {
+  if (!field.values.empty()) {
+    const auto [lo, hi] = std::minmax_element(field.values.begin(), field.values.end());
+    range_ = static_cast<uint64_t>(int64_t{*hi} - *lo);
+  }
+}
+
+// |s - m| <= num / den with m = n / d is |s d - n| <= num d / den; the left
+// side is an integer, so the right side may be floored.
+int64_t ErrorTest::thresholdFor(int64_t d) const {
+  const __int128 t = static_cast<__int128>(bound_.num) * d / bound_.den;
+  return t > INT64_MAX ? INT64_MAX : static_cast<int64_t>(t);
+}
+
+// q: the vertices relative to q[0] (q[0] = 0). With w_k the edge function
+// that is d at vertex k and 0 on the opposite edge, the interpolant times d is
+// sum v_k w_k; relative to v_0 it is u_1 w_1 + u_2 w_2 = A x + B y (w_1 and
+// w_2 vanish at q[0]). Acc is int64_t when |sample - v_0| * d * 16 fits, else
+// __int128 (spec 9.4 bounds every term by 12 * range * d).
+template <class Acc>
+bool ErrorTest::scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold) const {
+  const uint32_t width = field_.size[0];
+  const uint32_t x0 = static_cast<uint32_t>(q[0][0]), y0 = static_cast<uint32_t>(q[0][1]);
+  const int32_t* base = field_.values.data() + (uint64_t{y0} * width + x0);
+  // Vertex offsets relative to the first vertex.
+  const int64_t x1 = q[1][0] - x0, y1 = q[1][1] - y0, x2 = q[2][0] - x0, y2 = q[2][1] - y0;
+  const int64_t a[3] = {y1 - y2, y2, -y1}, b[3] = {x2 - x1, -x2, x1}, c[3] = {d, 0, 0};
+  const Acc v0 = base[0];
+  const Acc u1 = base[y1 * int64_t{width} + x1] - v0, u2 = base[y2 * int64_t{width} + x2] - v0;
+  const Acc A = u1 * a[1] + u2 * a[2], B = u1 * b[1] + u2 * b[2];
+  const int64_t ylo = std::min<int64_t>({0, y1, y2}), yhi = std::max<int64_t>({0, y1, y2});
+  const int64_t xlo = std::min<int64_t>({0, x1, x2}), xhi = std::max<int64_t>({0, x1, x2});
+  for (int64_t y = ylo; y <= yhi; ++y) {
+    int64_t lo = xlo, hi = xhi;
+    for (int k = 0; k < 3; ++k) {  // a_k x + r >= 0
+      const int64_t r = b[k] * y + c[k];
+      if (a[k] > 0) lo = std::max(lo, -floorDiv(r, a[k]));
+      else if (a[k] < 0) hi = std::min(hi, floorDiv(r, -a[k]));
+      else if (r < 0) hi = lo - 1;
+    }
+    const int32_t* row = base + y * int64_t{width};
+    const Acc row_term = B * y;
+    for (int64_t x = lo; x <= hi; ++x) {
+      const Acc diff = (row[x] - v0) * d - (A * x + row_term);
+      if (diff > threshold || diff < -threshold) return false;
+    }
+  }
+  return true;
+}
+
+bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
+  int64_t q[3][2];
+  for (int k = 0; k < 3; ++k) q[k][0] = p[k][0], q[k][1] = p[k][1];
+  const int64_t d = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
+  const int64_t threshold = thresholdFor(d);
+  if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58))
+    return scanTriangle<int64_t>(q, d, threshold);
+  return scanTriangle<__int128>(q, d, threshold);
+}
+
+bool ErrorTest::runWithin(uint64_t first, uint64_t step, uint32_t n) const {
+  const int32_t* v = field_.values.data();
+  const __int128 v0 = v[first], u = v[first + step * n] - v0;
+  const int64_t threshold = thresholdFor(n);
+  for (uint32_t k = 1; k < n; ++k) {
+    const __int128 diff = (v[first + step * k] - v0) * n - u * k;
+    if (diff > threshold || diff < -threshold) return false;
+  }
+  return true;
+}
+
+}  // namespace mrsv::quadtree

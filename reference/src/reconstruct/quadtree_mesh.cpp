@@ -1,0 +1,284 @@
+// spec: 9 quadtree vertex removal: the trees of the max-error (9.4) and
+// wavelet (9.2) criteria, the mesh of a tree (9.3), the tile border rule (9.5)
+// and the triangle-count search (9.6).
+#include "mrsv/quadtree_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#include "reconstruct/quadtree_border.h"
+#include "reconstruct/quadtree_error.h"
+#include "reconstruct/quadtree_tree.h"
+
+namespace mrsv {
+namespace {
+
+using quadtree::Tree;
+using Triangle = std::array<std::array<uint32_t, 2>, 3>;
+
+struct CellRef {
+  int level;
+  uint32_t i, j;
+};
+
+// The grid points of leaf (l, i, j)'s triangles for midpoint mask `mask`.
+template <class Emit>
+void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int mask, Emit&& emit) {
+  const quadtree::CellTriangles& t = quadtree::cellTriangles(mask, quadtree::risingDiagonal(i, j));
+  const uint32_t half = l == 0 ? 0 : uint32_t{1} << (l - 1);
+  const uint32_t x0 = tree.originX() + (i << l), y0 = tree.originY() + (j << l);
+  for (int k = 0; k < t.count; ++k) {
+    uint32_t p[3][2];
+    for (int v = 0; v < 3; ++v) {
+      const uint8_t* off = quadtree::kPointOffset[t.point[k][v]];
+      // A level-0 cell has no midpoints, so its offsets are 0 or 2 halves of 1.
+      p[v][0] = x0 + (l == 0 ? off[0] / 2 : off[0] * half);
+      p[v][1] = y0 + (l == 0 ? off[1] / 2 : off[1] * half);
+    }
+    emit(p);
+  }
+}
+
+// spec 9.4: refinement rounds. Every leaf is tested with its current midpoint
+// mask; all that fail are split together (with the balance they force), and
+// the rounds go on until no leaf fails. A leaf is tested again only when new
+// or when its mask changed, which gives the same rounds as testing them all.
+uint32_t maxErrorTree(const quadtree::ErrorTest& test, Tree* tree) {
+  const int top = tree->top();
+  std::vector<std::vector<uint8_t>> passed(top + 1), queued(top + 1);  // passed: mask + 1
+  for (int l = 0; l <= top; ++l) {
+    passed[l].assign(size_t{tree->cellsX(l)} * tree->cellsY(l), 0);
+    queued[l].assign(passed[l].size(), 0);
+  }
+  std::vector<CellRef> work{{top, 0, 0}}, next, failed;
+  auto touch = [&](int l, uint32_t i, uint32_t j) {
+    uint8_t& q = queued[l][size_t{j} * tree->cellsX(l) + i];
+    if (!q) q = 1, next.push_back({l, i, j});
+  };
+  uint32_t rounds = 0;
+  for (;;) {
+    failed.clear();
+    for (const CellRef& c : work) {
+      const size_t k = size_t{c.j} * tree->cellsX(c.level) + c.i;
+      queued[c.level][k] = 0;
+      if (tree->state(c.level, c.i, c.j) != quadtree::kLeaf) continue;
+      const int mask = tree->midpointMask(c.level, c.i, c.j);
+      if (passed[c.level][k] == mask + 1) continue;
+      bool ok = tree->inside(c.level, c.i, c.j);
+      if (ok && c.level > 0)
+        forEachCellTriangle(*tree, c.level, c.i, c.j, mask, [&](const uint32_t p[3][2]) {
+          if (ok) ok = test.triangleWithin(p);
+        });
+      if (ok) passed[c.level][k] = static_cast<uint8_t>(mask + 1);
+      else failed.push_back(c);
+    }
+    if (failed.empty()) return rounds;
+    ++rounds;
+    next.clear();
+    for (const CellRef& c : failed) tree->split(c.level, c.i, c.j, touch);
+    work.swap(next);
+  }
+}
+
+// spec 9.2: the paper's bottom-up removal. Cell c of level m becomes a leaf
+// (its centre vertex is removed) when its four children could, the squares of
+// the level-m detail signal at its centre and its four edge midpoints sum to
+// at most epsilon, and the level m-1 cells across its sides could too.
+void waveletTree(const QuadtreeDetails& details, const ErrorBound& epsilon, Tree* tree) {
+  const int top = tree->top(), levels = std::min(top, details.levels());
+  std::vector<std::vector<uint8_t>> leafable(top + 1);
+  leafable[0].assign(size_t{tree->cellsX(0)} * tree->cellsY(0), 1);
+  // sum <= num / den in the stream's fixed point: sum * den <= num * 4^frac_bits.
+  const __int128 limit = static_cast<__int128>(epsilon.num) << (2 * details.frac_bits);
+  for (int m = 1; m <= top; ++m) {
+    const uint32_t nx = tree->cellsX(m), ny = tree->cellsY(m);
+    const uint32_t cx = tree->cellsX(m - 1), cy = tree->cellsY(m - 1);
+    leafable[m].assign(size_t{nx} * ny, 0);
+    if (m > levels) continue;
+    const std::vector<int64_t>& d = details.detail[m - 1];
+    const uint64_t w = details.width(m);
+    auto below = [&](int64_t i, int64_t j) {  // a level m-1 cell could be a leaf (true off the grid)
+      if (i < 0 || j < 0 || i >= cx || j >= cy) return true;
+      return leafable[m - 1][size_t(j) * cx + size_t(i)] != 0;
+    };
+    for (uint32_t j = 0; j < ny; ++j)
+      for (uint32_t i = 0; i < nx; ++i) {
+        if (!tree->inside(m, i, j)) continue;
+        const int64_t a = 2 * int64_t{i}, b = 2 * int64_t{j};
+        if (!below(a, b) || !below(a + 1, b) || !below(a, b + 1) || !below(a + 1, b + 1)) continue;
+        if (!below(a, b - 1) || !below(a + 1, b - 1) || !below(a + 2, b) || !below(a + 2, b + 1) ||
+            !below(a, b + 2) || !below(a + 1, b + 2) || !below(a - 1, b) || !below(a - 1, b + 1))
+          continue;
+        __int128 sum = 0;
+        const int64_t at[5][2] = {{a + 1, b + 1}, {a + 1, b}, {a + 2, b + 1}, {a + 1, b + 2}, {a, b + 1}};
+        for (const auto& p : at) {
+          const __int128 v = d[uint64_t(p[1]) * w + uint64_t(p[0])];
+          sum += v * v;
+        }
+        if (sum * epsilon.den <= limit) leafable[m][size_t{j} * nx + i] = 1;
+      }
+  }
+  // Top down: a cell is a leaf when it could be and its parent could not.
+  for (int l = top; l > 0; --l)
+    for (uint32_t j = 0; j < tree->cellsY(l); ++j)
+      for (uint32_t i = 0; i < tree->cellsX(l); ++i)
+        if (tree->state(l, i, j) == quadtree::kLeaf && !leafable[l][size_t{j} * tree->cellsX(l) + i])
+          tree->split(l, i, j, [](int, uint32_t, uint32_t) {});
+}
+
+class MeshBuilder {
+ public:
+  MeshBuilder(const SampleField& field, GridMesh* out) : field_(field), out_(out) {
+    out->dims = 2;
+    out->size[0] = field.size[0], out->size[1] = field.size[1], out->size[2] = 1;
+    out->points.clear(), out->values.clear(), out->cells.clear();
+    index_.assign(field.values.size(), kNone);
+  }
+  uint32_t vertex(uint32_t x, uint32_t y) {
+    uint32_t& v = index_[field_.index(x, y)];
+    if (v == kNone) {
+      v = static_cast<uint32_t>(out_->points.size());
+      out_->points.push_back({x, y, 0});
+      out_->values.push_back(field_.at(x, y));
+    }
+    return v;
+  }
+  bool isVertex(uint32_t x, uint32_t y) const { return index_[field_.index(x, y)] != kNone; }
+  void triangle(const uint32_t p[3][2]) {
+    out_->cells.push_back({vertex(p[0][0], p[0][1]), vertex(p[1][0], p[1][1]), vertex(p[2][0], p[2][1]), 0});
+  }
+
+ private:
+  static constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  const SampleField& field_;
+  GridMesh* out_;
+  std::vector<uint32_t> index_;
+};
+
+// spec 9.3: every leaf's triangles from the look-up table.
+void meshTree(const Tree& tree, MeshBuilder* mesh) {
+  for (int l = tree.top(); l >= 0; --l)
+    for (uint32_t j = 0; j < tree.cellsY(l); ++j)
+      for (uint32_t i = 0; i < tree.cellsX(l); ++i)
+        if (tree.state(l, i, j) == quadtree::kLeaf)
+          forEachCellTriangle(tree, l, i, j, tree.midpointMask(l, i, j),
+                              [&](const uint32_t p[3][2]) { mesh->triangle(p); });
+}
+
+// spec 9.5: the ring of outermost samples, each side cut by its own samples
+// and zipped to the inner quadtree's boundary vertices.
+void meshRing(const SampleField& field, const quadtree::ErrorTest& test, MeshBuilder* mesh) {
+  const uint32_t w = field.size[0], h = field.size[1];
+  std::vector<Triangle> triangles;
+  for (int side = 0; side < 4; ++side) {
+    const bool horizontal = side == quadtree::kBottom || side == quadtree::kTop;
+    const uint32_t length = horizontal ? w - 1 : h - 1;
+    // The side's line and the inner boundary line one sample in.
+    const uint32_t line = side == quadtree::kBottom ? 0 : side == quadtree::kTop ? h - 1
+                          : side == quadtree::kLeft ? 0 : w - 1;
+    const uint32_t in = side == quadtree::kBottom || side == quadtree::kLeft ? line + 1 : line - 1;
+    auto point = [&](uint32_t t, uint32_t across) {
+      return horizontal ? std::array<uint32_t, 2>{t, across} : std::array<uint32_t, 2>{across, t};
+    };
+    const uint64_t first = horizontal ? field.index(0, line) : field.index(line, 0);
+    const uint64_t step = horizontal ? 1 : w;
+    std::vector<std::array<uint32_t, 2>> outer, inner;
+    for (uint32_t t : quadtree::sideCuts(test, first, step, length)) outer.push_back(point(t, line));
+    for (uint32_t t = 1; t < length; ++t) {
+      const auto p = point(t, in);
+      if (mesh->isVertex(p[0], p[1])) inner.push_back(p);
+    }
+    quadtree::zipStrip(outer, inner, horizontal ? 0 : 1, &triangles);
+  }
+  for (const Triangle& t : triangles) {
+    const uint32_t p[3][2] = {{t[0][0], t[0][1]}, {t[1][0], t[1][1]}, {t[2][0], t[2][1]}};
+    mesh->triangle(p);
+  }
+}
+
+bool meshWith(const SampleField& field, const QuadtreeDetails* details, QuadtreeCriterion criterion,
+              const ErrorBound& threshold, bool tile_borders, GridMesh* out, uint32_t* rounds) {
+  const uint32_t w = field.size[0], h = field.size[1];
+  Tree tree;
+  MeshBuilder mesh(field, out);
+  if (criterion == QuadtreeCriterion::kWavelet) {
+    tree.init(0, 0, w - 1, h - 1);
+    waveletTree(*details, threshold, &tree);
+    meshTree(tree, &mesh);
+    return true;
+  }
+  const quadtree::ErrorTest test(field, threshold);
+  if (tile_borders) tree.init(1, 1, w - 3, h - 3);
+  else tree.init(0, 0, w - 1, h - 1);
+  *rounds = maxErrorTree(test, &tree);
+  meshTree(tree, &mesh);
+  if (tile_borders) meshRing(field, test, &mesh);
+  return true;
+}
+
+}  // namespace
+
+bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
+                  const QuadtreeOptions& options, GridMesh* out, std::string* error,
+                  QuadtreeReport* report) {
+  *out = GridMesh{};
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (field.dims() != 2 || field.size[0] < 2 || field.size[1] < 2 ||
+      field.values.size() != uint64_t{field.size[0]} * field.size[1])
+    return fail("the quadtree meshes 2-D grids of at least 2 x 2 samples");
+  const bool wavelet = options.criterion == QuadtreeCriterion::kWavelet;
+  if (wavelet) {
+    if (!details) return fail("the wavelet criterion needs the stream's detail signals");
+    if (details->size[0] != field.size[0] || details->size[1] != field.size[1])
+      return fail("the detail signals are of another grid size");
+    if (options.tile_borders) return fail("the tile border rule needs the max-error criterion");
+  }
+  if (options.tile_borders && (field.size[0] < 4 || field.size[1] < 4))
+    return fail("the tile border rule needs a grid of at least 4 x 4 samples");
+  if (options.max_triangles == 0 && (!options.threshold.set() || options.threshold.den <= 0))
+    return fail(wavelet ? "no epsilon given" : "no maximum error given");
+  QuadtreeReport local;
+  QuadtreeReport* rep = report ? report : &local;
+  if (options.max_triangles == 0) {
+    rep->threshold = options.threshold;
+    meshWith(field, details, options.criterion, options.threshold, options.tile_borders, out, &rep->rounds);
+    return true;
+  }
+  // spec 9.6: the smallest k in [0, k_max] with at most max_triangles found by
+  // bisection (lo = 0, hi = k_max; mid = floor((lo + hi) / 2)); the threshold
+  // is k / 8 sample units (max error) or k in the stream's fixed point squared
+  // (wavelet). k_max: 8 x the samples' range, or the largest sum of squares.
+  int64_t k_max = 0;
+  int64_t den = 8;
+  if (wavelet) {
+    den = int64_t{1} << (2 * details->frac_bits);
+    __int128 largest = 0;
+    for (const auto& level : details->detail)
+      for (int64_t v : level) largest = std::max(largest, static_cast<__int128>(v) * v);
+    largest *= 5;
+    k_max = largest > INT64_MAX ? INT64_MAX : static_cast<int64_t>(largest);
+  } else {
+    const auto [lo, hi] = std::minmax_element(field.values.begin(), field.values.end());
+    k_max = 8 * (int64_t{*hi} - *lo);
+  }
+  auto build = [&](int64_t k) {
+    const ErrorBound t{k, den};
+    meshWith(field, details, options.criterion, t, options.tile_borders, out, &rep->rounds);
+    rep->threshold = t;
+    return out->cells.size() <= options.max_triangles;
+  };
+  int64_t lo = 0, hi = k_max;
+  while (lo < hi) {
+    const int64_t mid = lo + (hi - lo) / 2;
+    if (build(mid)) hi = mid;
+    else lo = mid + 1;
+  }
+  build(lo);
+  return true;
+}
+
+}  // namespace mrsv

@@ -1,0 +1,393 @@
+// Quadtree vertex removal (spec 9) on real terrains: crack-free meshes, the
+// maximum error checked against every sample, the tile border rule on two
+// adjacent windows, determinism, and the wavelet criterion on encoded streams.
+#include "mrsv/quadtree_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include "mrsv/encode.h"
+#include "reconstruct/quadtree_tree.h"
+#include "shared_data.h"
+
+namespace mrsv {
+namespace {
+
+// A window of a shared int16 terrain as a sample field.
+SampleField terrainWindow(const std::string& name, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
+  SampleField f;
+  test::SharedGrid grid;
+  for (const std::string& path : test::sharedGridFiles())
+    if (path.find(name) != std::string::npos) {
+      EXPECT_TRUE(test::loadSharedGrid(path, &grid)) << path;
+      break;
+    }
+  if (grid.samples.empty()) {
+    ADD_FAILURE() << "no shared terrain " << name;
+    return f;
+  }
+  f.size[0] = w, f.size[1] = h, f.size[2] = 1;
+  f.values.resize(size_t{w} * h);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      int16_t v;
+      std::memcpy(&v, grid.samples.data() + 2 * ((size_t{y0} + y) * grid.header.size_x + x0 + x), 2);
+      f.values[size_t{y} * w + x] = v;
+    }
+  return f;
+}
+
+int64_t cross(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+              const std::array<uint32_t, 3>& c) {
+  return (int64_t{b[0]} - a[0]) * (int64_t{c[1]} - a[1]) - (int64_t{b[1]} - a[1]) * (int64_t{c[0]} - a[0]);
+}
+
+// Crack-free: positive triangles covering the grid's rectangle exactly, each
+// directed edge once, interior edges in two triangles, boundary edges on the
+// grid's border, and no vertex inside another edge (no T-junction).
+void expectCrackFree(const GridMesh& m) {
+  const uint32_t w = m.size[0], h = m.size[1];
+  std::vector<int32_t> vertex_at(size_t{w} * h, -1);
+  for (size_t v = 0; v < m.points.size(); ++v) vertex_at[m.points[v][1] * size_t{w} + m.points[v][0]] = int32_t(v);
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  int64_t area = 0;
+  for (const auto& c : m.cells) {
+    const int64_t d = cross(m.points[c[0]], m.points[c[1]], m.points[c[2]]);
+    ASSERT_GT(d, 0) << "a triangle that is not counter-clockwise";
+    area += d;
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<uint32_t, uint32_t> e(c[k], c[(k + 1) % 3]);
+      ASSERT_EQ(++directed[e], 1) << "a directed edge twice";
+    }
+  }
+  EXPECT_EQ(area, 2 * int64_t{w - 1} * (h - 1)) << "the triangles do not tile the grid";
+  for (const auto& [e, n] : directed) {
+    const auto& a = m.points[e.first];
+    const auto& b = m.points[e.second];
+    if (!directed.count({e.second, e.first})) {
+      const bool on_border = (a[0] == b[0] && (a[0] == 0 || a[0] == w - 1)) ||
+                             (a[1] == b[1] && (a[1] == 0 || a[1] == h - 1));
+      ASSERT_TRUE(on_border) << "a boundary edge inside the grid";
+    }
+    if (e.first > e.second && directed.count({e.second, e.first})) continue;
+    const int64_t dx = int64_t{b[0]} - a[0], dy = int64_t{b[1]} - a[1];
+    const int64_t g = std::gcd(std::abs(dx), std::abs(dy));
+    for (int64_t k = 1; k < g; ++k) {
+      const uint64_t x = a[0] + dx / g * k, y = a[1] + dy / g * k;
+      ASSERT_LT(vertex_at[y * w + x], 0) << "T-junction at " << x << "," << y;
+    }
+  }
+}
+
+// The maximum error against every sample, by an independent rasterisation:
+// each sample in a closed triangle is compared with the triangle's plane in
+// exact rationals, and every sample must be covered.
+int64_t worstOver(const SampleField& f, const GridMesh& m, const ErrorBound& e) {
+  std::vector<uint8_t> covered(f.values.size(), 0);
+  int64_t violations = 0;
+  for (const auto& c : m.cells) {
+    const auto &p = m.points[c[0]], &q = m.points[c[1]], &r = m.points[c[2]];
+    const int64_t d = cross(p, q, r);
+    const uint32_t xl = std::min({p[0], q[0], r[0]}), xh = std::max({p[0], q[0], r[0]});
+    const uint32_t yl = std::min({p[1], q[1], r[1]}), yh = std::max({p[1], q[1], r[1]});
+    for (uint32_t y = yl; y <= yh; ++y)
+      for (uint32_t x = xl; x <= xh; ++x) {
+        const std::array<uint32_t, 3> s{x, y, 0};
+        const int64_t w0 = cross(q, r, s), w1 = cross(r, p, s), w2 = cross(p, q, s);
+        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        covered[size_t{y} * f.size[0] + x] = 1;
+        const __int128 plane = __int128(f.at(p[0], p[1])) * w0 + __int128(f.at(q[0], q[1])) * w1 +
+                               __int128(f.at(r[0], r[1])) * w2;
+        __int128 diff = __int128(f.at(x, y)) * d - plane;
+        if (diff < 0) diff = -diff;
+        if (diff * e.den > __int128(e.num) * d) ++violations;
+      }
+  }
+  for (uint8_t c : covered) violations += c ? 0 : 1;
+  return violations;
+}
+
+GridMesh meshAt(const SampleField& f, int64_t e, bool tiles = false) {
+  QuadtreeOptions o;
+  o.threshold = ErrorBound{e, 1};
+  o.tile_borders = tiles;
+  GridMesh m;
+  std::string error;
+  EXPECT_TRUE(quadtreeMesh(f, nullptr, o, &m, &error)) << error;
+  return m;
+}
+
+TEST(Quadtree, TableFansAreValid) {
+  // Every entry of table 9-1 tiles the cell (side 2 in half sizes, twice its
+  // area 8) with positive triangles, 2 + (midpoints) of them, using each present point.
+  for (int rising = 0; rising < 2; ++rising)
+    for (int mask = 0; mask < 16; ++mask) {
+      const quadtree::CellTriangles& t = quadtree::cellTriangles(mask, rising != 0);
+      EXPECT_EQ(t.count, 2 + __builtin_popcount(mask));
+      int64_t area = 0;
+      int used = 0;
+      for (int k = 0; k < t.count; ++k) {
+        std::array<uint32_t, 3> p[3];
+        for (int v = 0; v < 3; ++v) {
+          const uint8_t* o = quadtree::kPointOffset[t.point[k][v]];
+          p[v] = {o[0], o[1], 0};
+          used |= 1 << t.point[k][v];
+        }
+        const int64_t d = cross(p[0], p[1], p[2]);
+        EXPECT_GT(d, 0) << mask;
+        area += d;
+      }
+      EXPECT_EQ(area, 8) << mask;
+      EXPECT_EQ(used, 0x55 | (mask & 1) << 1 | (mask & 2) << 2 | (mask & 4) << 3 | (mask & 8) << 4);
+    }
+}
+
+TEST(Quadtree, MaxErrorHonouredOnRealTerrains) {
+  struct Crop { const char* name; uint32_t x0, y0, w, h; };
+  const Crop crops[] = {{"mt_st_helens", 0, 0, 317, 460},
+                        {"big_tujunga", 300, 100, 400, 300},
+                        {"mt_fuji", 441, 304, 460, 378},        // the void-free rectangle
+                        {"mt_rainier", 874, 444, 327, 257}};
+  for (const Crop& c : crops) {
+    const SampleField f = terrainWindow(c.name, c.x0, c.y0, c.w, c.h);
+    size_t previous = SIZE_MAX;
+    for (int64_t e : {1, 5, 20, 50})
+      for (bool tiles : {false, true}) {
+        const GridMesh m = meshAt(f, e, tiles);
+        SCOPED_TRACE(std::string(c.name) + " E=" + std::to_string(e) + (tiles ? " tiles" : ""));
+        expectCrackFree(m);
+        EXPECT_EQ(worstOver(f, m, ErrorBound{e, 1}), 0);
+        if (!tiles) {
+          EXPECT_LT(m.cells.size(), previous);
+          previous = m.cells.size();
+        }
+      }
+  }
+}
+
+TEST(Quadtree, FractionalBoundAndFlatGrid) {
+  const SampleField f = terrainWindow("mt_st_helens", 10, 20, 129, 65);
+  QuadtreeOptions o;
+  ASSERT_TRUE(parseErrorBound("2.5", &o.threshold));
+  GridMesh m;
+  std::string error;
+  ASSERT_TRUE(quadtreeMesh(f, nullptr, o, &m, &error)) << error;
+  expectCrackFree(m);
+  EXPECT_EQ(worstOver(f, m, o.threshold), 0);
+  SampleField flat;
+  flat.size[0] = 1025, flat.size[1] = 1025, flat.size[2] = 1;
+  flat.values.assign(size_t{1025} * 1025, 7);
+  const GridMesh two = meshAt(flat, 0);
+  EXPECT_EQ(two.cells.size(), 2u);
+}
+
+TEST(Quadtree, TileBordersMatchOnAdjacentWindows) {
+  // Two 257 x 257 windows of Big Tujunga sharing the column x = 556, and two
+  // sharing the row y = 356 (the second below the first).
+  const SampleField a = terrainWindow("big_tujunga", 300, 100, 257, 257);
+  const SampleField right = terrainWindow("big_tujunga", 556, 100, 257, 257);
+  const SampleField below = terrainWindow("big_tujunga", 300, 356, 257, 257);
+  for (int64_t e : {1, 5, 20, 50}) {
+    SCOPED_TRACE("E=" + std::to_string(e));
+    const GridMesh ma = meshAt(a, e, true), mr = meshAt(right, e, true), mb = meshAt(below, e, true);
+    std::vector<uint32_t> a_right, r_left, a_top, b_bottom;
+    for (const auto& p : ma.points) {
+      if (p[0] == 256) a_right.push_back(p[1]);
+      if (p[1] == 256) a_top.push_back(p[0]);
+    }
+    for (const auto& p : mr.points)
+      if (p[0] == 0) r_left.push_back(p[1]);
+    for (const auto& p : mb.points)
+      if (p[1] == 0) b_bottom.push_back(p[0]);
+    for (auto* v : {&a_right, &r_left, &a_top, &b_bottom}) std::sort(v->begin(), v->end());
+    EXPECT_EQ(a_right, r_left);
+    EXPECT_EQ(a_top, b_bottom);
+    EXPECT_GT(a_right.size(), 2u);
+    for (const GridMesh* m : {&ma, &mr, &mb}) expectCrackFree(*m);
+    EXPECT_EQ(worstOver(a, ma, ErrorBound{e, 1}), 0);
+    EXPECT_EQ(worstOver(right, mr, ErrorBound{e, 1}), 0);
+  }
+}
+
+TEST(Quadtree, DeterministicCanonicalOutput) {
+  const SampleField f = terrainWindow("big_tujunga", 0, 0, 513, 513);
+  for (bool tiles : {false, true}) {
+    const auto first = canonicalGridMeshOutput(meshAt(f, 5, tiles));
+    EXPECT_EQ(first, canonicalGridMeshOutput(meshAt(f, 5, tiles)));
+  }
+}
+
+TEST(Quadtree, MaxTrianglesSearch) {
+  const SampleField f = terrainWindow("mt_st_helens", 0, 0, 257, 257);
+  QuadtreeOptions o;
+  o.max_triangles = 5000;
+  GridMesh m;
+  QuadtreeReport report;
+  std::string error;
+  ASSERT_TRUE(quadtreeMesh(f, nullptr, o, &m, &error, &report)) << error;
+  EXPECT_LE(m.cells.size(), 5000u);
+  EXPECT_GT(m.cells.size(), 4000u);
+  EXPECT_EQ(worstOver(f, m, report.threshold), 0);
+  // One eighth of a sample less needs more triangles.
+  if (report.threshold.num > 0) {
+    o.max_triangles = 0;
+    o.threshold = ErrorBound{report.threshold.num - 1, report.threshold.den};
+    GridMesh finer;
+    ASSERT_TRUE(quadtreeMesh(f, nullptr, o, &finer, &error)) << error;
+    EXPECT_GT(finer.cells.size(), 5000u);
+  }
+}
+
+// Streams made by the encoder from a real terrain, each wavelet.
+std::vector<uint8_t> encodeTerrain(const SampleField& f, int order) {
+  GridHeader h;
+  h.num_dims = 2;
+  h.sample_type = SampleType::kInt16;
+  h.coding = GridCoding::kWavelet;
+  h.size_x = f.size[0], h.size_y = f.size[1];
+  std::vector<uint8_t> samples(f.values.size() * 2);
+  for (size_t i = 0; i < f.values.size(); ++i) {
+    const int16_t v = static_cast<int16_t>(f.values[i]);
+    std::memcpy(samples.data() + 2 * i, &v, 2);
+  }
+  WaveletEncodeOptions o;
+  o.order = order;
+  o.max_error = 0.5;
+  o.progressive = true;
+  std::vector<uint8_t> stream;
+  EXPECT_TRUE(encodeWaveletGrid(h, samples, Metadata{}, o, &stream, nullptr).ok());
+  return stream;
+}
+
+TEST(Quadtree, WaveletCriterionOnStreams) {
+  const SampleField source = terrainWindow("mt_st_helens", 0, 0, 257, 300);
+  for (int order : {2, 4, kWaveletOrderCdf97}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    const std::vector<uint8_t> stream = encodeTerrain(source, order);
+    SampleField f;
+    QuadtreeDetails details;
+    std::string error;
+    ASSERT_TRUE(quadtreeDetailsFromStream(stream.data(), stream.size(), DecodeOptions{}, &f, &details, &error))
+        << error;
+    DecodedGrid plain;
+    ASSERT_TRUE(decodeGrid(stream.data(), stream.size(), DecodeOptions{}, &plain).ok());
+    SampleField expected;
+    ASSERT_TRUE(sampleFieldFromGrid(plain, &expected, &error));
+    EXPECT_EQ(f.values, expected.values);
+    ASSERT_GE(details.levels(), 3);
+    size_t previous = SIZE_MAX;
+    for (int64_t eps : {0, 1, 10, 100, 1000, 10000, 100000}) {
+      QuadtreeOptions o;
+      o.criterion = QuadtreeCriterion::kWavelet;
+      o.threshold = ErrorBound{eps, 1};
+      GridMesh m;
+      ASSERT_TRUE(quadtreeMesh(f, &details, o, &m, &error)) << error;
+      expectCrackFree(m);
+      EXPECT_LE(m.cells.size(), previous) << "eps " << eps;
+      previous = m.cells.size();
+    }
+    EXPECT_LT(previous, 20000u);
+    // The search of a triangle count with the wavelet criterion.
+    QuadtreeOptions o;
+    o.criterion = QuadtreeCriterion::kWavelet;
+    o.max_triangles = 8000;
+    GridMesh m;
+    ASSERT_TRUE(quadtreeMesh(f, &details, o, &m, &error)) << error;
+    EXPECT_LE(m.cells.size(), 8000u);
+    EXPECT_GT(m.cells.size(), 2000u);
+  }
+}
+
+TEST(Quadtree, RefusesWhatItCannotMesh) {
+  SampleField f;
+  f.size[0] = 1, f.size[1] = 5, f.size[2] = 1;
+  f.values.assign(5, 0);
+  GridMesh m;
+  std::string error;
+  QuadtreeOptions o;
+  o.threshold = ErrorBound{1, 1};
+  EXPECT_FALSE(quadtreeMesh(f, nullptr, o, &m, &error));
+  f.size[0] = 3, f.size[1] = 3, f.values.assign(9, 0);
+  o.tile_borders = true;
+  EXPECT_FALSE(quadtreeMesh(f, nullptr, o, &m, &error));
+  o.tile_borders = false;
+  o.criterion = QuadtreeCriterion::kWavelet;
+  EXPECT_FALSE(quadtreeMesh(f, nullptr, o, &m, &error));
+  EXPECT_FALSE(error.empty());
+}
+
+// Informative (printed, not asserted): the whole St Helens and Big Tujunga
+// grids (sizes not 2^k + 1), with and without the tile border rule.
+TEST(Quadtree, TerrainCounts) {
+  for (const char* name : {"mt_st_helens", "big_tujunga"}) {
+    const bool helens = std::string(name) == "mt_st_helens";
+    const SampleField f = terrainWindow(name, 0, 0, helens ? 317 : 1197, helens ? 460 : 643);
+    for (int64_t e : {1, 5, 20, 50}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const GridMesh m = meshAt(f, e);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const GridMesh tiled = meshAt(f, e, true);
+      if (helens) {
+        const GridMesh window = meshAt(terrainWindow(name, 0, 0, 257, 257), e);
+        std::printf("[quadtree] %s 257x257 window E=%lld: %zu triangles\n", name, static_cast<long long>(e),
+                    window.cells.size());
+      }
+      std::printf("[quadtree] %s E=%lld m: %zu triangles (%.1f ms), with tile borders %zu\n", name,
+                  static_cast<long long>(e), m.cells.size(), ms, tiled.cells.size());
+    }
+  }
+}
+
+// Informative (printed, not asserted): triangles and time on whole SRTM
+// tiles with their voids given the synthesised values of a stream.
+TEST(Quadtree, SrtmTileCounts) {
+  for (const char* name : {"mt_fuji", "mt_rainier"}) {
+    const SampleField raw = terrainWindow(name, 0, 0, 1201, 1201);
+    GridHeader h;
+    h.num_dims = 2, h.sample_type = SampleType::kInt16, h.coding = GridCoding::kWavelet;
+    h.size_x = h.size_y = 1201;
+    h.grid_flags = kGridFlagHasNodata, h.nodata_bits = 0x8000;
+    std::vector<uint8_t> samples(raw.values.size() * 2);
+    for (size_t i = 0; i < raw.values.size(); ++i) {
+      const int16_t v = static_cast<int16_t>(raw.values[i]);
+      std::memcpy(samples.data() + 2 * i, &v, 2);
+    }
+    WaveletEncodeOptions eo;
+    eo.max_error = 0;
+    std::vector<uint8_t> stream;
+    ASSERT_TRUE(encodeWaveletGrid(h, samples, Metadata{}, eo, &stream, nullptr).ok());
+    DecodeOptions d;
+    d.void_values = true;
+    DecodedGrid grid;
+    ASSERT_TRUE(decodeGrid(stream.data(), stream.size(), d, &grid).ok());
+    SampleField f;
+    std::string error;
+    ASSERT_TRUE(sampleFieldFromGrid(grid, &f, &error)) << error;
+    for (int64_t e : {1, 5, 20, 50}) {
+      double best = 1e9;
+      GridMesh m;
+      for (int run = 0; run < 3; ++run) {
+        const auto t0 = std::chrono::steady_clock::now();
+        m = meshAt(f, e);
+        best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      }
+      EXPECT_EQ(worstOver(f, m, ErrorBound{e, 1}), 0);
+      QuadtreeOptions o;
+      o.threshold = ErrorBound{e, 1};
+      QuadtreeReport report;
+      GridMesh again;
+      ASSERT_TRUE(quadtreeMesh(f, nullptr, o, &again, &error, &report));
+      std::printf("[quadtree] %s 1201x1201 E=%lld m: %zu triangles, %zu vertices, %.1f ms, %u rounds\n", name,
+                  static_cast<long long>(e), m.cells.size(), m.points.size(), best, report.rounds);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mrsv
