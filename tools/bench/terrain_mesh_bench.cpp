@@ -31,6 +31,7 @@
 #include "mrsv/encode.h"
 #include "mrsv/grid.h"
 #include "mrsv/grid_mesh.h"
+#include "mrsv/quadtree_mesh.h"
 #include "mrsv/terrain_insertion.h"
 #include "shared_data.h"
 
@@ -142,6 +143,11 @@ int main(int argc, char** argv) {
                                    {"srtm3_N27E086_mt_everest_1201x1201_int16le.raw.zst", "SRTM Everest 1201^2"}};
   if (quick) terrains.resize(2);
 
+  struct Crop {
+    std::string label;
+    SampleField field;
+  };
+  std::vector<Crop> crops;
   std::printf("## Delaunay insertion against Delatin (every sample checked)\n\n");
   std::printf("| terrain | max error | Delatin triangles | MRSV triangles | ratio | Delatin ms | MRSV ms | speed-up | Delatin worst | MRSV worst | progressive triangles | progressive / single |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -176,6 +182,19 @@ int main(int argc, char** argv) {
       sampleFieldFromGrid(prefix, &stage_fields[k], &error);
     }
 
+    // The largest 2^k + 1 square at the grid's centre, for MARTINI.
+    {
+      uint32_t side = 2;
+      while (2 * (side - 1) + 1 <= std::min(field.size[0], field.size[1])) side = 2 * (side - 1) + 1;
+      Crop c;
+      c.label = t.label.substr(0, t.label.rfind(' ')) + " " + std::to_string(side) + "^2";
+      c.field.size[0] = c.field.size[1] = side;
+      c.field.size[2] = 1;
+      const uint32_t x0 = (field.size[0] - side) / 2, y0 = (field.size[1] - side) / 2;
+      for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x) c.field.values.push_back(field.at(x0 + x, y0 + y));
+      crops.push_back(std::move(c));
+    }
     std::vector<PeerResult> delatin;
     if (have_peers) delatin = runPeer(peers, "delatin", field, errors, scratch);
     for (size_t k = 0; k < errors.size(); ++k) {
@@ -210,6 +229,47 @@ int main(int argc, char** argv) {
       std::printf("| %s | %s m %s| %.2f%s | %zu%s | %.3f |\n", t.label.c_str(), errors[k].c_str(), peer, ours_worst,
                   ours_ok ? "" : " (over)", prog.cells.size(), prog_ok ? "" : " (over)",
                   double(prog.cells.size()) / ours.cells.size());
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\n## Quadtree against MARTINI and insertion on 2^k + 1 crops (every sample checked)\n\n");
+  std::printf("| crop | max error | MARTINI triangles | quadtree triangles | insertion triangles | quadtree / insertion | MARTINI ms | quadtree ms | speed-up | MARTINI worst | quadtree worst |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Crop& c : crops) {
+    std::vector<PeerResult> martini;
+    if (have_peers) martini = runPeer(peers, "martini", c.field, errors, scratch);
+    for (size_t k = 0; k < errors.size(); ++k) {
+      ErrorBound bound;
+      parseErrorBound(errors[k], &bound);
+      QuadtreeOptions qt;
+      qt.threshold = bound;
+      GridMesh quad;
+      std::string error;
+      double best_ms = 1e30;
+      for (int rep = 0; rep < 3; ++rep) {
+        const double t0 = now();
+        quadtreeMesh(c.field, nullptr, qt, &quad, &error);
+        best_ms = std::min(best_ms, (now() - t0) * 1000);
+      }
+      bool quad_ok = false;
+      const double quad_worst = worstError(c.field, quad, bound, &quad_ok);
+      InsertionLimits limits;
+      limits.max_error = bound;
+      TerrainInserter ins(c.field.size[0], c.field.size[1]);
+      ins.refine(c.field, 0, limits, &error);
+      char peer[160] = "| n/a ";
+      char peer_time[200] = "| n/a | %.0f | | n/a ";
+      std::snprintf(peer_time, sizeof peer_time, "| n/a | %.0f | | n/a ", best_ms);
+      if (k < martini.size() && martini[k].ok) {
+        bool within = false;
+        const double worst = worstError(c.field, martini[k].mesh, bound, &within);
+        std::snprintf(peer, sizeof peer, "| %zu ", martini[k].mesh.cells.size());
+        std::snprintf(peer_time, sizeof peer_time, "| %.1f | %.1f | %.1fx | %.2f%s ", martini[k].ms, best_ms,
+                      martini[k].ms / best_ms, worst, within ? "" : " (over)");
+      }
+      std::printf("| %s | %s m %s| %zu | %llu | %.2f %s| %.2f%s |\n", c.label.c_str(), errors[k].c_str(), peer,
+                  quad.cells.size(), (unsigned long long)ins.cellCount(), double(quad.cells.size()) / ins.cellCount(),
+                  peer_time, quad_worst, quad_ok ? "" : " (over)");
       std::fflush(stdout);
     }
   }

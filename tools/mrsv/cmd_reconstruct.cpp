@@ -10,6 +10,7 @@
 #include "mrsv/file_io.h"
 #include "mrsv/grid_mesh.h"
 #include "mrsv/mesh_formats.h"
+#include "mrsv/quadtree_mesh.h"
 #include "mrsv/terrain_insertion.h"
 #include "mrsv/tet_formats.h"
 
@@ -100,8 +101,9 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, "give --max-error, --triangles, --tets or --epsilon", kExitUsage);
   req.limits.border_rule = !args.flag("no-border-rule");
   req.progressive = args.flag("progressive");
-  if (req.method == "quadtree" && (req.progressive || args.flag("no-border-rule")))
-    return fail(cmd, "--progressive and --no-border-rule are for --method insertion", kExitUsage);
+  if (req.method == "quadtree" && req.progressive)
+    return fail(cmd, "--progressive is for --method insertion (the quadtree is built bottom-up from the finest level)",
+                kExitUsage);
   if (req.method == "insertion" && args.has("epsilon"))
     return fail(cmd, "--epsilon is for --method quadtree", kExitUsage);
   uint64_t byte_limit = UINT64_MAX, levels = 0;
@@ -167,6 +169,37 @@ int runMesh(int argc, char** argv) {
                      (unsigned long long)inserter.cellCount(), inserter.maxError());
     }
     inserter.mesh(&mesh);
+  } else if (req.method == "quadtree") {
+    // The quadtree is bottom-up (paper 4): one stage, the last.
+    const uint64_t stage_bytes = stages.back().bytes;
+    SampleField field;
+    QuadtreeDetails details;
+    QuadtreeOptions qt;
+    if (args.has("epsilon")) {
+      qt.criterion = QuadtreeCriterion::kWavelet;
+      if (!parseErrorBound(args.value("epsilon"), &qt.threshold))
+        return fail(cmd, "--epsilon must be a decimal from 0 to 2147483648 with at most 9 decimals", kExitUsage);
+      if (req.limits.max_error.set()) return fail(cmd, "give --epsilon or --max-error, not both", kExitUsage);
+      if (!quadtreeDetailsFromStream(bytes.data(), stage_bytes, options, &field, &details, &error))
+        return fail(cmd, in + ": " + error, kExitInvalidData);
+    } else {
+      DecodedGrid prefix;
+      const DecodedGrid* source = &grid;
+      if (stage_bytes != bytes.size()) {
+        if (Error e = decodeGrid(bytes.data(), stage_bytes, options, &prefix); !e.ok()) return reportError(cmd, in, e);
+        source = &prefix;
+      }
+      if (!sampleFieldFromGrid(*source, &field, &error)) return fail(cmd, in + ": " + error, kExitInvalidData);
+      qt.threshold = req.limits.max_error;
+      qt.tile_borders = req.limits.max_error.set() && req.limits.border_rule && field.size[0] >= 4 && field.size[1] >= 4;
+    }
+    qt.max_triangles = req.limits.max_cells;
+    QuadtreeReport report;
+    if (!quadtreeMesh(field, args.has("epsilon") ? &details : nullptr, qt, &mesh, &error, &report))
+      return fail(cmd, in + ": " + error, kExitInvalidData);
+    if (!req.quiet && qt.max_triangles)
+      std::fprintf(stderr, "mrsv mesh: quadtree threshold %lld/%lld for at most %llu triangles\n",
+                   (long long)report.threshold.num, (long long)report.threshold.den, (unsigned long long)qt.max_triangles);
   } else {
     return fail(cmd, in + ": --method " + req.method + " on a " + std::to_string(dims) + "-D grid is not available in this build",
                 kExitUsage);
