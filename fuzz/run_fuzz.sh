@@ -9,7 +9,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=$1 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode fuzz_pt_decode fuzz_mesh_read fuzz_tet_read)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode fuzz_pt_decode fuzz_reconstruct fuzz_mesh_read fuzz_tet_read)
 findings=$here/findings
 mkdir -p "$findings"
 scratch=$(mktemp -d)
