@@ -144,5 +144,35 @@ printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1
 expect 1 "$mrsv" tetrahedralize "$work/bad.mesh" "$work/x.vtu"; stderr_has "bad.mesh:8: tet 1: vertex index 2 is out of range"; one_line_stderr
 if [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed tetrahedralize left an output"; fi
 
+# Mesh reconstruction (spec 8, 9): help, TINs by insertion and quadtree, the
+# canonical output, one-line errors, no output on failure.
+expect 0 "$mrsv" mesh --help; stdout_has "Usage: mrsv mesh"
+expect 0 "$mrsv" help mesh; stdout_has "border"
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --progressive --meta spacing=30,-30 --meta origin=557970,5121870 "$crop" "$work/p.mrsv"
+expect 0 "$mrsv" mesh --quiet --max-error 5 "$work/p.mrsv" "$work/p.obj"
+if python3 -c '
+import sys
+v = [l.split() for l in open(sys.argv[1]) if l.startswith("v ")]
+f = [l for l in open(sys.argv[1]) if l.startswith("f ")]
+xs = [float(p[1]) for p in v]; ys = [float(p[2]) for p in v]
+assert 4 < len(v) < 128 * 128 and len(f) > 2
+assert min(xs) == 557970 and max(xs) == 557970 + 127 * 30 and max(ys) == 5121870 and min(ys) == 5121870 - 127 * 30
+' "$work/p.obj"; then ok; else bad "mesh OBJ lacks the stream's geometry"; fi
+expect 0 "$mrsv" mesh --quiet --max-error 5 --canonical "$work/p.mrsv" "$work/p1.bin"
+expect 0 "$mrsv" mesh --quiet --max-error 5 --canonical "$work/p.mrsv" "$work/p2.bin"
+if cmp -s "$work/p1.bin" "$work/p2.bin" && head -c 26 "$work/p1.bin" | grep -q "mrsv-canonical-grid-mesh 1"; then ok; else bad "canonical mesh output not repeatable"; fi
+expect 0 "$mrsv" mesh --max-error 5 --progressive "$work/p.mrsv" "$work/pp.ply"; stderr_has "stage 1 of"
+expect 0 "$mrsv" mesh --quiet --method quadtree --max-error 5 "$work/p.mrsv" "$work/q.off"
+expect 0 "$mrsv" mesh --quiet --triangles 500 "$work/p.mrsv" "$work/t.obj"
+expect 0 "$mrsv" mesh --quiet --levels 2 --max-error 5 "$work/p.mrsv" "$work/l.obj"
+expect 2 "$mrsv" mesh "$work/p.mrsv" "$work/x.obj"; stderr_has "give --max-error"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error -1 "$work/p.mrsv" "$work/x.obj"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error 5 "$work/p.mrsv" "$work/x.vtu"; stderr_has "2-D grid"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error 5 --method quadtree --progressive "$work/p.mrsv" "$work/x.obj"; one_line_stderr
+expect 1 "$mrsv" mesh --max-error 5 --levels 12 "$work/p.mrsv" "$work/x.obj"; one_line_stderr
+expect 1 "$mrsv" mesh --max-error 5 "$vectors/invalid/bad_checksum.mrsv" "$work/x.obj"; stderr_has "E113"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error 5 "$work/p.mrsv" "$work/p.mrsv"; stderr_has "refusing to overwrite"
+if [ ! -e "$work/x.obj" ] && [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed mesh left an output"; fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
