@@ -9,8 +9,7 @@ Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks)
   if (corner_ranks) ranks_.assign(corner_ranks, corner_ranks + 4);
   // The diagonal the perturbed test picks: (0,0)-(max,max) unless (0,max)
   // conflicts with the triangle below it.
-  tris_.resize(2);
-  nbrs_.resize(2);
+  tri_.resize(2);
   if (!conflict(0, 1, 2, 3)) {
     set(0, 0, 1, 2, kNone, 1, kNone);
     set(1, 0, 2, 3, kNone, kNone, 0);
@@ -26,19 +25,18 @@ bool Delaunay2::conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
 }
 
 uint32_t Delaunay2::addTriangle() {
-  tris_.push_back({0, 0, 0});
-  nbrs_.push_back({kNone, kNone, kNone});
-  return static_cast<uint32_t>(tris_.size() - 1);
+  tri_.push_back({{0, 0, 0}, {kNone, kNone, kNone}});
+  return static_cast<uint32_t>(tri_.size() - 1);
 }
 
 void Delaunay2::set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc) {
-  tris_[t] = {a, b, c};
-  nbrs_[t] = {na, nb, nc};
+  tri_[t].v = {a, b, c};
+  tri_[t].n = {na, nb, nc};
 }
 
 void Delaunay2::replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
   if (t == kNone) return;
-  auto& n = nbrs_[t];
+  auto& n = tri_[t].n;
   for (int i = 0; i < 3; ++i)
     if (n[i] == from) {
       n[i] = to;
@@ -49,12 +47,12 @@ void Delaunay2::replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
 uint32_t Delaunay2::locate(Point2 p, uint32_t t) const {
   // The visibility walk ends in a Delaunay triangulation (no cycles).
   for (;;) {
-    const auto& v = tris_[t];
+    const auto& v = tri_[t].v;
     int i = 0;
     for (; i < 3; ++i)
       if (orient2d(points_[v[(i + 1) % 3]], points_[v[(i + 2) % 3]], p) < 0) break;
     if (i == 3) return t;
-    t = nbrs_[t][i];
+    t = tri_[t].n[i];
   }
 }
 
@@ -62,8 +60,8 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
   const uint32_t pv = static_cast<uint32_t>(points_.size());
   points_.push_back(p);
   ranks_.push_back(rank);
-  const auto v = tris_[t];
-  const auto n = nbrs_[t];
+  const auto v = tri_[t].v;
+  const auto n = tri_[t].n;
   int on_edge = -1;
   for (int i = 0; i < 3; ++i)
     if (orient2d(points_[v[(i + 1) % 3]], points_[v[(i + 2) % 3]], p) == 0) on_edge = i;
@@ -92,10 +90,10 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
       stack_ = {t, t1};
     } else {
       int k = 0;
-      while (nbrs_[u][k] != t) ++k;
-      const uint32_t d = tris_[u][k];
-      const uint32_t mb = nbrs_[u][(k + 2) % 3];  // across d-c (opposite b in u = (d, c, b))
-      const uint32_t mc = nbrs_[u][(k + 1) % 3];  // across b-d
+      while (tri_[u].n[k] != t) ++k;
+      const uint32_t d = tri_[u].v[k];
+      const uint32_t mb = tri_[u].n[(k + 2) % 3];  // across d-c (opposite b in u = (d, c, b))
+      const uint32_t mc = tri_[u].n[(k + 1) % 3];  // across b-d
       const uint32_t u1 = addTriangle();
       set(t, pv, a, b, nc, u1, t1);
       set(t1, pv, c, a, nb, t, u);
@@ -115,16 +113,16 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
   while (!stack_.empty()) {
     const uint32_t t = stack_.back();
     stack_.pop_back();
-    const uint32_t u = nbrs_[t][0];
+    const uint32_t u = tri_[t].n[0];
     if (u == kNone) continue;
-    const uint32_t p = tris_[t][0], a1 = tris_[t][1], a2 = tris_[t][2];
+    const uint32_t p = tri_[t].v[0], a1 = tri_[t].v[1], a2 = tri_[t].v[2];
     int k = 0;
-    while (nbrs_[u][k] != t) ++k;
-    const uint32_t q = tris_[u][k];
+    while (tri_[u].n[k] != t) ++k;
+    const uint32_t q = tri_[u].v[k];
     if (!conflict(p, a1, a2, q)) continue;
     // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).
-    const uint32_t t1 = nbrs_[t][1], t2 = nbrs_[t][2];                   // across a2-p, p-a1
-    const uint32_t u1 = nbrs_[u][(k + 1) % 3], u2 = nbrs_[u][(k + 2) % 3];  // across a1-q, q-a2
+    const uint32_t t1 = tri_[t].n[1], t2 = tri_[t].n[2];                   // across a2-p, p-a1
+    const uint32_t u1 = tri_[u].n[(k + 1) % 3], u2 = tri_[u].n[(k + 2) % 3];  // across a1-q, q-a2
     set(t, p, a1, q, u1, u, t2);
     set(u, p, q, a2, u2, t1, t);
     replaceNeighbour(u1, u, t);

@@ -35,12 +35,12 @@ class Delaunay2 {
   uint32_t insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint32_t>* touched);
 
   size_t vertexCount() const { return points_.size(); }
-  size_t triangleCount() const { return tris_.size(); }
+  size_t triangleCount() const { return tri_.size(); }
   Point2 point(uint32_t v) const { return points_[v]; }
   // Counter-clockwise corners; edge i is the one opposite corner i.
-  const std::array<uint32_t, 3>& triangle(uint32_t t) const { return tris_[t]; }
+  const std::array<uint32_t, 3>& triangle(uint32_t t) const { return tri_[t].v; }
   // The triangle across edge i, or kNone on the rectangle's border.
-  const std::array<uint32_t, 3>& neighbours(uint32_t t) const { return nbrs_[t]; }
+  const std::array<uint32_t, 3>& neighbours(uint32_t t) const { return tri_[t].n; }
 
  private:
   uint32_t addTriangle();
@@ -53,8 +53,12 @@ class Delaunay2 {
 
   std::vector<Point2> points_;
   std::vector<uint64_t> ranks_;
-  std::vector<std::array<uint32_t, 3>> tris_;
-  std::vector<std::array<uint32_t, 3>> nbrs_;
+  // A triangle's corners and neighbours side by side: a split or flip reads both.
+  struct Triangle {
+    std::array<uint32_t, 3> v;
+    std::array<uint32_t, 3> n;
+  };
+  std::vector<Triangle> tri_;
   std::vector<uint32_t> stack_;  // triangles whose edge 0 (opposite the new vertex) awaits a test
 };
 

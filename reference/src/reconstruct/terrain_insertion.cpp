@@ -31,7 +31,12 @@ struct TerrainInserter::State {
   Delaunay2 dt;
   std::vector<uint8_t> is_vertex;       // per sample
   std::vector<uint64_t> vertex_sample;  // per vertex
-  std::vector<int32_t> vertex_value;    // per vertex, from the last stage's field
+  // Per vertex: its grid point and the last stage's value, side by side, as
+  // a triangle's scan reads all three.
+  struct VertexXYZ {
+    int32_t x, y, z;
+  };
+  std::vector<VertexXYZ> vertex;
   CandidateQueue queue;                 // triangles whose worst sample is beyond the bound
   std::vector<double> worst_error;      // per triangle, for maxError() only
   // This stage's bound: candidates within it are never inserted, so they are
@@ -52,7 +57,7 @@ struct TerrainInserter::State {
       vertex_sample.push_back(uint64_t(p.y) * nx + uint64_t(p.x));
       is_vertex[vertex_sample.back()] = 1;
     }
-    vertex_value.assign(4, 0);
+    for (uint32_t v = 0; v < 4; ++v) vertex.push_back({dt.point(v).x, dt.point(v).y, 0});
   }
 
   // The lattice coordinates of an axis of n samples within [lo, hi], in order:
@@ -75,12 +80,16 @@ struct TerrainInserter::State {
   template <class W>
   void scanWith(uint32_t t) {
     const auto& tv = dt.triangle(t);
-    const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
-    const int64_t za = vertex_value[tv[0]], zb = vertex_value[tv[1]] - za, zc = vertex_value[tv[2]] - za;
+    const VertexXYZ& va = vertex[tv[0]];
+    const VertexXYZ& vb = vertex[tv[1]];
+    const VertexXYZ& vc = vertex[tv[2]];
+    const Point2 a{va.x, va.y}, b{vb.x, vb.y}, c{vc.x, vc.y};
+    const int64_t za = va.z, zb = int64_t{vb.z} - za, zc = int64_t{vc.z} - za;
     const int64_t den = orient2d(a, b, c);
     // Barycentric numerators as functions of the sample (x, y): w = ex * x + ey * y + e0.
     struct Edge {
       int64_t ex, ey, e0;
+      int64_t at(int64_t x, int64_t y) const { return ex * x + ey * y + e0; }
     };
     auto edge = [](Point2 u, Point2 v) {
       return Edge{int64_t{u.y} - v.y, int64_t{v.x} - u.x, int64_t{u.x} * v.y - int64_t{u.y} * v.x};
@@ -94,62 +103,59 @@ struct TerrainInserter::State {
     }
     Candidate best;
     best.den = den;
-    bool found = false;
+    W best_num = 0;
     const int32_t* values = field->values.data();
-    // Narrow triangles (most, once the mesh is fine) test each lattice
-    // point of the bounding box; wide ones solve each row's range, which
-    // costs divisions.
+    const int64_t last = int64_t{nx} - 1;
+    const bool last_apart = (last & (step - 1)) != 0;  // the last column is not a multiple of step
+    const int64_t first_x = (x0 + step - 1) & ~(step - 1);  // x0 >= 0
+    // Samples come in increasing index order: on a tie the first stays.
+    const auto consider = [&](int64_t row, int64_t x, W e) {
+      if (e < 0) e = -e;
+      if (e > best_num) {
+        best_num = e;
+        best.sample = uint64_t(row + x);
+      }
+    };
+    // Narrow triangles (most, once the mesh is fine): every lattice point of
+    // the bounding box, tested by its three barycentric numerators. Wide
+    // ones: each row's range solved by division, then only the points inside.
     const bool narrow_box = x1 - x0 <= 16 * step;
-    const bool last_x_apart = ((int64_t{nx} - 1) & (step - 1)) != 0;  // the last column is not a multiple of step
     forLattice(y0, y1, ny, [&](int64_t y) {
-      int64_t lo = x0, hi = x1;
+      const int64_t row = y * nx;
+      const int32_t* v = values + row;
       if (narrow_box) {
-        int64_t wa = ea.ex * x0 + ea.ey * y + ea.e0, wb = eb.ex * x0 + eb.ey * y + eb.e0,
-                wc = ec.ex * x0 + ec.ey * y + ec.e0;
-        // From x0 (not necessarily on the lattice) to the lattice's first point.
-        const int64_t first = (x0 + step - 1) & ~(step - 1);
-        wa += ea.ex * (first - x0), wb += eb.ex * (first - x0), wc += ec.ex * (first - x0);
-        lo = INT64_MAX, hi = INT64_MIN;
-        for (int64_t x = first; x <= x1; x += step, wa += ea.ex * step, wb += eb.ex * step, wc += ec.ex * step)
-          if ((wa | wb | wc) >= 0) lo = std::min(lo, x), hi = x;
-        const int64_t last = int64_t{nx} - 1;
-        if (last_x_apart && x0 <= last && last <= x1 && (ea.ex * last + ea.ey * y + ea.e0) >= 0 &&
-            (eb.ex * last + eb.ey * y + eb.e0) >= 0 && (ec.ex * last + ec.ey * y + ec.e0) >= 0)
-          lo = std::min(lo, last), hi = last;
-        if (lo > hi) return;
+        int64_t wa = ea.at(first_x, y), wb = eb.at(first_x, y), wc = ec.at(first_x, y);
+        const int64_t da = ea.ex * step, db = eb.ex * step, dc = ec.ex * step;
+        for (int64_t x = first_x; x <= x1; x += step, wa += da, wb += db, wc += dc)
+          if ((wa | wb | wc) >= 0) consider(row, x, W(v[x] - za) * den - (W(wb) * zb + W(wc) * zc));
+        if (last_apart && x0 <= last && last <= x1) {
+          const int64_t la = ea.at(last, y), lb = eb.at(last, y), lc = ec.at(last, y);
+          if ((la | lb | lc) >= 0) consider(row, last, W(v[last] - za) * den - (W(lb) * zb + W(lc) * zc));
+        }
+        return;
       }
       // The x range where all three barycentric numerators are >= 0.
-      if (!narrow_box) for (const Edge& e : {ea, eb, ec}) {
+      int64_t lo = x0, hi = x1;
+      for (const Edge& e : {ea, eb, ec}) {
         const int64_t r = -(e.ey * y + e.e0);  // need ex * x >= r
         if (e.ex > 0) lo = std::max(lo, ceilDiv(r, e.ex));
         else if (e.ex < 0) hi = std::min(hi, floorDiv(-r, -e.ex));
         else if (r > 0) return;
       }
       if (lo > hi) return;
-      const int64_t row = y * nx;
       // The interpolant's numerator wb zb + wc zc steps by a constant along
-      // the row's multiples of step; the last column (n - 1) is on its own.
-      // Samples come in increasing index order: on a tie the first stays.
-      const auto consider = [&](int64_t x, W e) {
-        if (e < 0) e = -e;
-        if (e > W(best.num)) {
-          best.num = e;
-          best.sample = uint64_t(row + x);
-          found = true;
-        }
-      };
-      const int64_t first = (lo + step - 1) & ~(step - 1);  // lo >= 0
+      // the row's multiples of step; the last column is on its own.
+      const int64_t first = (lo + step - 1) & ~(step - 1);
       if (first <= hi) {
         const W dz = W(eb.ex) * step * zb + W(ec.ex) * step * zc;
-        W interp = W(eb.ex * first + eb.ey * y + eb.e0) * zb + W(ec.ex * first + ec.ey * y + ec.e0) * zc;
-        const int32_t* v = values + row;
-        for (int64_t x = first; x <= hi; x += step, interp += dz) consider(x, W(v[x] - za) * den - interp);
+        W interp = W(eb.at(first, y)) * zb + W(ec.at(first, y)) * zc;
+        for (int64_t x = first; x <= hi; x += step, interp += dz) consider(row, x, W(v[x] - za) * den - interp);
       }
-      const int64_t last = int64_t{nx} - 1;
-      if (last_x_apart && lo <= last && last <= hi)
-        consider(last, W(values[row + last] - za) * den -
-                           (W(eb.ex * last + eb.ey * y + eb.e0) * zb + W(ec.ex * last + ec.ey * y + ec.e0) * zc));
+      if (last_apart && lo <= last && last <= hi)
+        consider(row, last, W(v[last] - za) * den - (W(eb.at(last, y)) * zb + W(ec.at(last, y)) * zc));
     });
+    best.num = best_num;
+    const bool found = best_num > 0;
     worst_error[t] = found ? double(best.num) / double(best.den) : 0.0;
     if (found && (bound_num < 0 || best.num * bound_den > bound_num * best.den)) queue.set(t, best);
     else queue.remove(t);
@@ -164,7 +170,7 @@ struct TerrainInserter::State {
     dt.insert(p, dt.vertexCount(), t, &touched);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
-    vertex_value.push_back(field->values[sample]);
+    vertex.push_back({p.x, p.y, field->values[sample]});
     worst_error.resize(dt.triangleCount(), 0.0);
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
@@ -201,7 +207,7 @@ struct TerrainInserter::State {
         hint = touched.front();
         is_vertex[sample] = 1;
         vertex_sample.push_back(sample);
-        vertex_value.push_back(field->values[sample]);
+        vertex.push_back({p.x, p.y, field->values[sample]});
       }
     }
   }
@@ -228,7 +234,7 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   }
   s.field = &field;
   s.step = int64_t{1} << shift;
-  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex_value[v] = field.values[s.vertex_sample[v]];
+  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex[v].z = field.values[s.vertex_sample[v]];
   // spec 8.7: a stage on a lattice of step 2^shift > 1 stops at 2^(shift+1)
   // times the bound (decision D46: coarse stages, which see blurred samples,
   // then place few vertices the finer stages would not have chosen).
@@ -281,7 +287,7 @@ void TerrainInserter::mesh(GridMesh* out) const {
   for (uint32_t v = 0; v < s.dt.vertexCount(); ++v) {
     const Point2 p = s.dt.point(v);
     out->points[v] = {uint32_t(p.x), uint32_t(p.y), 0};
-    out->values[v] = s.vertex_value[v];
+    out->values[v] = s.vertex[v].z;
   }
   out->cells.resize(s.dt.triangleCount());
   for (uint32_t t = 0; t < s.dt.triangleCount(); ++t) {
