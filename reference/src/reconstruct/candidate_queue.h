@@ -48,7 +48,7 @@ class CandidateQueue {
       return;
     }
     const uint32_t i = pos_[cell];
-    if (i > 0 && before(e, heap_[(i - 1) / 2])) siftUp(i, e);
+    if (i > 0 && before(e, heap_[(i - 1) / kArity])) siftUp(i, e);
     else siftDown(i, e);
   }
 
@@ -60,11 +60,15 @@ class CandidateQueue {
     const Entry last = heap_.back();
     heap_.pop_back();
     if (last.cell == cell) return;
-    if (i > 0 && before(last, heap_[(i - 1) / 2])) siftUp(i, last);
+    if (i > 0 && before(last, heap_[(i - 1) / kArity])) siftUp(i, last);
     else siftDown(i, last);
   }
 
  private:
+  // Four children per node: half the depth of a binary heap, and a node's
+  // children (16 bytes each) share a cache line or two.
+  static constexpr uint32_t kArity = 4;
+
   // The error as a double beside the cell, so that most comparisons read the
   // heap array alone.
   struct Entry {
@@ -91,7 +95,7 @@ class CandidateQueue {
   }
   void siftUp(uint32_t i, const Entry& e) {
     while (i > 0) {
-      const uint32_t parent = (i - 1) / 2;
+      const uint32_t parent = (i - 1) / kArity;
       if (!before(e, heap_[parent])) break;
       place(i, heap_[parent]);
       i = parent;
@@ -101,9 +105,12 @@ class CandidateQueue {
   void siftDown(uint32_t i, const Entry& e) {
     const uint32_t n = uint32_t(heap_.size());
     for (;;) {
-      uint32_t child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+      const uint32_t first = kArity * i + 1;
+      if (first >= n) break;
+      uint32_t child = first;
+      const uint32_t end = first + kArity < n ? first + kArity : n;
+      for (uint32_t k = first + 1; k < end; ++k)
+        if (before(heap_[k], heap_[child])) child = k;
       if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;
