@@ -6,11 +6,14 @@ set(MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/grid_stages.cpp
   reference/src/reconstruct/delaunay2.cpp
   reference/src/reconstruct/line_insertion.cpp
-  reference/src/reconstruct/terrain_insertion.cpp)
+  reference/src/reconstruct/terrain_insertion.cpp
+  reference/src/reconstruct/delaunay3.cpp
+  reference/src/reconstruct/volume_insertion.cpp)
 set(MRSV_RECONSTRUCT_TESTS
   reference/tests/grid_mesh_test.cpp
   reference/tests/terrain_insertion_test.cpp
-  reference/tests/grid_mesh_checks.cpp)
+  reference/tests/grid_mesh_checks.cpp
+  reference/tests/volume_insertion_test.cpp)
 
 # tools/bench/terrain_mesh_bench: issue 22's terrain goals beside Delatin and
 # MARTINI (node, tools/bench/setup_peers.sh) in the same run.
@@ -43,3 +46,29 @@ list(APPEND MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/quadtree_tree.cpp)
 list(APPEND MRSV_RECONSTRUCT_TESTS
   reference/tests/quadtree_test.cpp)
+
+# Volume insertion (spec 10) is checked against CGAL's Delaunay_triangulation_3
+# in its tests and benchmark: CGAL for them, never for mrsv_decode.
+function(mrsv_add_volume_insertion_peers)
+  if(MRSV_DECODER_ONLY OR NOT TARGET CGAL::CGAL)
+    return()
+  endif()
+  if(TARGET mrsv_reconstruct_tests)
+    target_link_libraries(mrsv_reconstruct_tests PRIVATE CGAL::CGAL)
+  endif()
+  find_library(MRSV_VOLINS_BENCH_ZSTD zstd)
+  find_path(MRSV_VOLINS_BENCH_ZSTD_INCLUDE zstd.h)
+  if(NOT TARGET GTest::gtest OR NOT MRSV_VOLINS_BENCH_ZSTD OR NOT MRSV_VOLINS_BENCH_ZSTD_INCLUDE)
+    return()
+  endif()
+  # shared_data.cpp (the CT head from ../shared/data) reports through GoogleTest.
+  add_executable(volume_insertion_bench tools/bench/volume_insertion_bench.cpp reference/tests/shared_data.cpp
+                                        reference/tests/test_support.cpp)
+  target_include_directories(volume_insertion_bench PRIVATE reference/src reference/tests ${MRSV_VOLINS_BENCH_ZSTD_INCLUDE})
+  target_link_libraries(volume_insertion_bench PRIVATE mrsv_decode CGAL::CGAL ${MRSV_VOLINS_BENCH_ZSTD} GTest::gtest)
+  target_compile_definitions(volume_insertion_bench PRIVATE MRSV_SHARED_DATA="${MRSV_SHARED_DATA}"
+                                                         MRSV_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endfunction()
+if(NOT MRSV_DECODER_ONLY AND CMAKE_VERSION VERSION_GREATER_EQUAL 3.19)
+  cmake_language(DEFER CALL mrsv_add_volume_insertion_peers)
+endif()
