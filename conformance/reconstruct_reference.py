@@ -296,7 +296,7 @@ class Mesh:
         self.rank[g] = len(self.rank)
         self.removed, self.added = [], []
         a, b, c = tri
-        pa, pb, pc, pg = self.xy(a), self.xy(b), self.xy(c), self.xy(g)
+        pg = self.xy(g)
         on = None
         for (u, v, w) in ((a, b, c), (b, c, a), (c, a, b)):
             if orient(self.xy(u), self.xy(v), pg) == 0:

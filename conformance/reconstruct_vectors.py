@@ -175,9 +175,19 @@ def build(data_dir, mrsv):
                 [["--max-error", "2.5", "--progressive"], ["--max-error", "20"],
                  ["--max-error", "1", "--progressive", "--no-border-rule"],
                  ["--triangles", "300", "--progressive"], ["--max-error", "5", "--levels", "1", "--progressive"]]))
-    out.append(("bt65x49_maxerr2_progressive", encode(mrsv, bt, (65, 49), ["--progressive", "--max-error", "2"]),
-                f"near-lossless progressive (--max-error 2) 65x49 int16 of {where_bt}",
-                [["--max-error", "0", "--progressive"], ["--max-error", "2.5"], ["--max-error", "20", "--progressive"]]))
+    ne = encode(mrsv, bt, (65, 49), ["--progressive", "--max-error", "2"])
+    bands, lv = chunk_ends(ne, b"GBND"), rr.Stream(ne).band_levels()
+    # Level 1's first band has a nonzero step here: a prefix ending with it differs from level 2's end.
+    first_of_level1 = str(bands[lv.index(1)])
+    out.append(("bt65x49_maxerr2_progressive", ne,
+                f"near-lossless progressive (--max-error 2; levels 3/2, so level 3 splits x alone) 65x49 int16 "
+                f"of {where_bt}",
+                [["--max-error", "0", "--progressive"], ["--max-error", "2.5"], ["--max-error", "20", "--progressive"],
+                 ["--max-error", "2", "--bytes", first_of_level1, "--progressive"],
+                 ["--max-error", "2", "--bytes", first_of_level1, "--levels", "1", "--progressive"],
+                 ["--max-error", "2", "--bytes", str(bands[-1]), "--progressive"],
+                 ["--max-error", "2", "--levels", "2"], ["--max-error", "1", "--levels", "3", "--progressive"],
+                 ["!", "--max-error", "1", "--levels", "4"]]))
     sh17 = crop(data_dir, "st_helens", 300, 40, 17, 65)
     where_sh17 = "Mt St Helens (mt_st_helens_317x460) rows 300-364, cols 40-56"
     out.append(("sh17x65_lossless", encode(mrsv, sh17, (17, 65), ["--lossless"]),
