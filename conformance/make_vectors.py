@@ -335,6 +335,7 @@ def build():
 
 CODED_PREFIX = "vectors/coded_"
 PT_PREFIX = "vectors/pt_"
+RECONSTRUCT_PREFIX = "vectors/reconstruct/"
 
 
 def coded_entries():
@@ -343,7 +344,8 @@ def coded_entries():
     if not os.path.exists(path):
         return []
     with open(path, encoding="utf-8") as f:
-        return [e for e in json.load(f)["vectors"] if e["file"].startswith((CODED_PREFIX, PT_PREFIX))]
+        return [e for e in json.load(f)["vectors"] if e["file"].startswith(
+            (CODED_PREFIX, PT_PREFIX, RECONSTRUCT_PREFIX))]
 
 
 def profile_of(data):

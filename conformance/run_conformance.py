@@ -17,12 +17,23 @@ The decoder is given as a command template with {in} and {out}:
     ("levels") must then hash as listed.
   --profile P (repeatable): only the vectors of profiles P and "any" (spec 1.6),
     for a decoder that implements some profiles only.
+  mesh mode: the command is a reconstructor (spec 8) with {in}, {out} and {args};
+    it runs once for each entry of a vector's "reconstruct" list, {args} replaced
+    by the entry's options (several words). It must exit 0 and write the canonical
+    output of 8.2 with the entry's SHA-256, or, for an entry marked "refused", exit
+    non-zero and leave no file at {out}. Vectors without "reconstruct" are skipped.
+    With --known-failures, an entry marked "known_failure" (a reported disagreement
+    of the reference reconstructor) must fail, and is counted apart.
 
 Examples:
   run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}"
   run_conformance.py --mode check --check-offsets --decoder "build/mrsv check {in}"
   run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}" \
       --level-decoder "build/mrsv decode --canonical --vertices {vertices} {in} {out}"
+  run_conformance.py --mode mesh --known-failures \
+      --decoder "build/mrsv mesh --quiet --canonical {in} {out} {args}"
+  run_conformance.py --mode mesh \
+      --decoder "python3 conformance/reconstruct_reference.py --mrsv build/mrsv {in} {out} {args}"
 """
 import argparse
 import hashlib
@@ -51,11 +62,70 @@ def check_levels(args, vector, path, out):
     return None
 
 
+def expand(template, path, out, args=()):
+    cmd = []
+    for part in shlex.split(template):
+        if part == "{args}":
+            cmd += list(args)
+        else:
+            cmd.append(part.replace("{in}", path).replace("{out}", out))
+    return cmd
+
+
+def run_mesh_cases(args, vector, path, out):
+    """spec 8: each reconstruction of the vector; returns (passed, failures, known failures)."""
+    passed, failures, known = 0, [], 0
+    for case in vector["reconstruct"]:
+        if os.path.exists(out):
+            os.remove(out)
+        label = f"{vector['file']} {' '.join(case['args'])}"
+        try:
+            run = subprocess.run(expand(args.decoder, path, out, case["args"]), capture_output=True,
+                                 timeout=args.timeout)
+        except subprocess.TimeoutExpired:
+            failures.append((label, f"no answer within {args.timeout} s"))
+            continue
+        text = (run.stdout + run.stderr).decode("utf-8", "replace")
+        problem = None
+        if run.returncode < 0:
+            problem = f"killed by signal {-run.returncode}"
+        elif case.get("refused"):
+            if run.returncode == 0:
+                problem = "exit 0 where spec 8 refuses"
+            elif os.path.exists(out):
+                problem = "an output file was left behind for a refused request"
+        elif run.returncode != 0:
+            problem = f"exit {run.returncode}: {text.strip()[:300]}"
+        elif not os.path.exists(out):
+            problem = "no output written"
+        else:
+            digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
+            if digest != case["sha256"]:
+                problem = f"canonical mesh sha256 {digest}, expected {case['sha256']}"
+        if args.known_failures and case.get("known_failure"):
+            if problem:
+                known += 1
+                if args.verbose:
+                    print(f"known {label}: {case['known_failure']}")
+            else:
+                failures.append((label, "passes now: remove its known_failure (" + case["known_failure"] + ")"))
+            continue
+        if problem:
+            failures.append((label, problem))
+        else:
+            passed += 1
+            if args.verbose:
+                print(f"ok    {label}")
+    return passed, failures, known
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--manifest", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "manifest.json"))
     parser.add_argument("--decoder", required=True, help="command template with {in} and {out}")
-    parser.add_argument("--mode", choices=("decode", "check"), default="decode")
+    parser.add_argument("--mode", choices=("decode", "check", "mesh"), default="decode")
+    parser.add_argument("--known-failures", action="store_true",
+                        help="mesh mode: cases marked known_failure must fail (the reference's reported bugs)")
     parser.add_argument("--check-offsets", action="store_true", help="also require 'offset <n>' in error output")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds allowed per vector")
     parser.add_argument("--level-decoder", help="command template with {in}, {out} and {vertices}")
@@ -67,16 +137,22 @@ def main():
     with open(args.manifest, encoding="utf-8") as f:
         manifest = json.load(f)
     base = os.path.dirname(os.path.abspath(args.manifest))
-    passed, failures = 0, []
+    passed, failures, known = 0, [], 0
     with tempfile.TemporaryDirectory(prefix="mrsv-conformance-") as tmp:
         for vector in manifest["vectors"]:
             if args.profile and vector.get("profile", "any") not in args.profile + ["any"]:
                 continue
             path = os.path.join(base, vector["file"])
             out = os.path.join(tmp, "out.bin")
+            if args.mode == "mesh":
+                if "reconstruct" in vector:
+                    p, f, k = run_mesh_cases(args, vector, path, out)
+                    passed, known = passed + p, known + k
+                    failures += f
+                continue
             if os.path.exists(out):
                 os.remove(out)
-            cmd = [part.replace("{in}", path).replace("{out}", out) for part in shlex.split(args.decoder)]
+            cmd = expand(args.decoder, path, out)
             try:
                 run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
             except subprocess.TimeoutExpired:
@@ -116,7 +192,8 @@ def main():
                     print(f"ok    {vector['file']}")
     for name, problem in failures:
         print(f"FAIL  {name}: {problem}")
-    print(f"conformance ({args.mode}): {passed} passed, {len(failures)} failed")
+    print(f"conformance ({args.mode}): {passed} passed, {len(failures)} failed"
+          + (f", {known} known failures of the reference (manifest: known_failure)" if known else ""))
     return 1 if failures else 0
 
 

@@ -8,6 +8,8 @@ table below adds what each vector tests in particular; an invalid vector must be
 listed.
 """
 
+R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "R8.5-1", "R8.5-2", "R8.5-3", "R8.5-4", "R8.5-5", "R8.6-1", "R8.6-2"]
+
 RULES = {
     # --- container and stored grids (make_vectors.py) ---
     "smallest": ["R3.1-10"],
@@ -294,6 +296,16 @@ RULES = {
     "pt_split_beyond_tet_count": ["R7.7-5", "R7.7.1-3"],
     "pt_link_too_large": ["R7.7-5", "R7.7.1-2"],
 
+    # --- mesh reconstruction (reconstruct_vectors.py; each lists its reconstructions) ---
+    # Every stream with reconstructions: the canonical output, the predicates, the
+    # triangulation and the greedy insertion with bounds and limits (8.2 to 8.6).
+    **{n: R8_MESH for n in ("coast33_stored", "grid_2x2_stored")},
+    "sh33_stored": R8_MESH + ["R8.7-1"],
+    **{n: R8_MESH + ["R8.7-1", "R8.7-2"] for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive",
+                                                  "bt65x49_maxerr2_progressive", "sh17x65_lossless", "grid_5x3_lossless")},
+    **{n: R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"]
+       for n in ("fuji33_mask_lossless_progressive", "fuji33_mask_psnr45_progressive")},
+    **{n: ["R8.1-2"] for n in ("float32_33x33_stored", "line_33_int16", "col_1x33_int16", "row_33x1_int16")},
 }
 
 
