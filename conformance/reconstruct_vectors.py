@@ -123,14 +123,7 @@ def chunk_ends(stream, kind):
 
 
 # Known disagreements of the reference reconstructor with the text, by (vector, args).
-KNOWN_FAILURES = {
-    ("col_1x33_int16", ("--max-error", "1")):
-        "the reference meshes a 1 x 33 grid (25 vertices, two of them at (0, 0), 43 flat triangles) "
-        "instead of refusing it (8.1: 2 <= X)",
-    ("row_33x1_int16", ("--max-error", "1")):
-        "the reference meshes a 33 x 1 grid (25 vertices, two at (32, 0), 43 flat triangles) "
-        "instead of refusing it (8.1: 2 <= Y)",
-}
+KNOWN_FAILURES = {}
 
 
 def build(data_dir, mrsv):

@@ -118,9 +118,13 @@ int runMesh(int argc, char** argv) {
 
   std::vector<uint8_t> bytes;
   if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
-  if (byte_limit < bytes.size()) bytes.resize(byte_limit);
   DecodeOptions options;
   options.void_values = true;
+  if (byte_limit < bytes.size()) {
+    // As if the rest had not arrived: an incomplete last chunk is ignored (2.5.1).
+    bytes.resize(byte_limit);
+    options.container.allow_partial_tail = true;
+  }
   DecodedGrid grid;
   if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) return reportError(cmd, in, e);
   if (!grid.has_samples) return fail(cmd, in + ": the stream holds no samples yet (no band in the bytes read)", kExitInvalidData);

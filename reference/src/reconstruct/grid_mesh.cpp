@@ -57,6 +57,16 @@ bool sampleFieldFromGrid(const DecodedGrid& grid, SampleField* field, std::strin
   field->size[0] = grid.output_size[0];
   field->size[1] = grid.output_size[1];
   field->size[2] = h.num_dims == 3 ? grid.output_size[2] : 1;
+  // spec 8.1 (2-D) and 10 (3-D): every side from 2 samples, at most 2^16 in
+  // 2-D and 2^15 in 3-D, so that the exact products fit 128 bits.
+  const uint32_t largest = h.num_dims == 3 ? 32768 : 65536;
+  for (int a = 0; a < h.num_dims; ++a)
+    if (field->size[a] < 2 || field->size[a] > largest) {
+      *error = "the grid is " + std::to_string(field->size[0]) + " x " + std::to_string(field->size[1]) +
+               (h.num_dims == 3 ? " x " + std::to_string(field->size[2]) : std::string()) +
+               "; the reconstructors take sides of 2 to " + std::to_string(largest) + " samples (spec 8.1)";
+      return false;
+    }
   switch (h.sample_type) {
     case SampleType::kUint8: widen<uint8_t>(grid.samples, &field->values); break;
     case SampleType::kInt16: widen<int16_t>(grid.samples, &field->values); break;
