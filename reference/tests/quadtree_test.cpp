@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <map>
 #include <numeric>
+#include <set>
+#include <vector>
 #include <string>
 
 #include "mrsv/encode.h"
@@ -145,6 +148,58 @@ TEST(Quadtree, TableFansAreValid) {
       }
       EXPECT_EQ(area, 8) << mask;
       EXPECT_EQ(used, 0x55 | (mask & 1) << 1 | (mask & 2) << 2 | (mask & 4) << 3 | (mask & 8) << 4);
+    }
+}
+
+TEST(Quadtree, CandidateTriangulationsAreValid) {
+  // Table 9-2: candidate 0 is the table 9-1 entry; every candidate tiles the
+  // cell with positive triangles over the present points; all but the last
+  // have 2 + (midpoints) triangles, the last is the centre fan (4 + midpoints);
+  // no two candidates are the same set of triangles.
+  for (int rising = 0; rising < 2; ++rising)
+    for (int mask = 0; mask < 16; ++mask) {
+      const quadtree::CellCandidates& c = quadtree::cellCandidates(mask, rising != 0);
+      const int k = __builtin_popcount(mask);
+      const int expected[5] = {3, 4, 7, 14, 31};  // polygon triangulations + the fan
+      ASSERT_EQ(c.candidate.size(), size_t(expected[k])) << mask;
+      const quadtree::CellTriangles& table = quadtree::cellTriangles(mask, rising != 0);
+      std::set<std::vector<std::array<int, 3>>> seen;
+      for (size_t n = 0; n < c.candidate.size(); ++n) {
+        const auto& cand = c.candidate[n];
+        EXPECT_EQ(cand.count, n + 1 == c.candidate.size() ? 4 + k : 2 + k);
+        int64_t area = 0;
+        int used = 0;
+        std::vector<std::array<int, 3>> set;
+        for (int t = 0; t < cand.count; ++t) {
+          std::array<uint32_t, 3> p[3];
+          std::array<int, 3> tri;
+          for (int v = 0; v < 3; ++v) {
+            const uint8_t point = c.triangle[cand.triangle[t]][v];
+            p[v] = {quadtree::kPointOffset[point][0], quadtree::kPointOffset[point][1], 0};
+            used |= 1 << point;
+            tri[v] = point;
+          }
+          std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+          set.push_back(tri);
+          EXPECT_GT(cross(p[0], p[1], p[2]), 0) << mask;
+          area += cross(p[0], p[1], p[2]);
+        }
+        std::sort(set.begin(), set.end());
+        EXPECT_TRUE(seen.insert(set).second) << "mask " << mask << " candidate " << n << " repeats";
+        EXPECT_EQ(area, 8) << mask;
+        const int present = 0x55 | (mask & 1) << 1 | (mask & 2) << 2 | (mask & 4) << 3 | (mask & 8) << 4;
+        EXPECT_EQ(used, n + 1 == c.candidate.size() ? present | 0x100 : present) << mask;
+        if (n == 0) {
+          std::vector<std::array<int, 3>> first;
+          for (int t = 0; t < table.count; ++t) {
+            std::array<int, 3> tri{table.point[t][0], table.point[t][1], table.point[t][2]};
+            std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+            first.push_back(tri);
+          }
+          std::sort(first.begin(), first.end());
+          EXPECT_EQ(set, first) << mask;
+        }
+      }
     }
 }
 

@@ -7,7 +7,9 @@
 //
 // Three ways to choose the tree:
 //   - max_error E (exact, sample units): every sample of the grid lies within
-//     E of the mesh (the linear interpolant over its triangle);
+//     E of the mesh (the linear interpolant over its triangle); a leaf stays
+//     when some triangulation of its polygon (the table's, another one, or a
+//     fan from its centre, in a fixed order) is within E, and takes the first;
 //   - epsilon (the paper's wavelet criterion): a dyadic vertex is removed when
 //     the squares of the detail signal over it and its 4-neighbourhood sum to
 //     at most epsilon, bottom-up with the resolution and m to m-2 criteria;

@@ -22,34 +22,65 @@ struct CellRef {
   uint32_t i, j;
 };
 
-// The grid points of leaf (l, i, j)'s triangles for midpoint mask `mask`.
-template <class Emit>
-void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int mask, Emit&& emit) {
-  const quadtree::CellTriangles& t = quadtree::cellTriangles(mask, quadtree::risingDiagonal(i, j));
-  const uint32_t half = l == 0 ? 0 : uint32_t{1} << (l - 1);
+// The grid point of polygon point `point` (table 9-1) of leaf (l, i, j).
+void cellPoint(const Tree& tree, int l, uint32_t i, uint32_t j, uint8_t point, uint32_t out[2]) {
+  const uint8_t* off = quadtree::kPointOffset[point];
   const uint32_t x0 = tree.originX() + (i << l), y0 = tree.originY() + (j << l);
-  for (int k = 0; k < t.count; ++k) {
+  // A level-0 cell has no midpoints, so its offsets are 0 or 2 halves of 1.
+  out[0] = x0 + (l == 0 ? off[0] / 2 : off[0] << (l - 1));
+  out[1] = y0 + (l == 0 ? off[1] / 2 : off[1] << (l - 1));
+}
+
+// The grid points of leaf (l, i, j)'s triangles for midpoint mask `mask` and
+// candidate `choice` of table 9-2 (0: the table 9-1 entry).
+template <class Emit>
+void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int mask, int choice, Emit&& emit) {
+  const quadtree::CellCandidates& c = quadtree::cellCandidates(mask, quadtree::risingDiagonal(i, j));
+  const quadtree::CellCandidates::Candidate& cand = c.candidate[choice];
+  for (int k = 0; k < cand.count; ++k) {
     uint32_t p[3][2];
-    for (int v = 0; v < 3; ++v) {
-      const uint8_t* off = quadtree::kPointOffset[t.point[k][v]];
-      // A level-0 cell has no midpoints, so its offsets are 0 or 2 halves of 1.
-      p[v][0] = x0 + (l == 0 ? off[0] / 2 : off[0] * half);
-      p[v][1] = y0 + (l == 0 ? off[1] / 2 : off[1] * half);
-    }
+    for (int v = 0; v < 3; ++v) cellPoint(tree, l, i, j, c.triangle[cand.triangle[k]][v], p[v]);
     emit(p);
   }
+}
+
+// spec 9.4: the first candidate of table 9-2 whose triangles are all within
+// E, or -1. Each distinct triangle is tested at most once.
+int firstCandidateWithin(const Tree& tree, const quadtree::ErrorTest& test, int l, uint32_t i, uint32_t j,
+                         int mask) {
+  const quadtree::CellCandidates& c = quadtree::cellCandidates(mask, quadtree::risingDiagonal(i, j));
+  int8_t within[128];  // -1 unknown, 0 no, 1 yes
+  std::fill_n(within, c.triangle.size(), int8_t{-1});
+  for (size_t n = 0; n < c.candidate.size(); ++n) {
+    const quadtree::CellCandidates::Candidate& cand = c.candidate[n];
+    bool ok = true;
+    for (int k = 0; k < cand.count && ok; ++k) {
+      int8_t& w = within[cand.triangle[k]];
+      if (w < 0) {
+        uint32_t p[3][2];
+        for (int v = 0; v < 3; ++v) cellPoint(tree, l, i, j, c.triangle[cand.triangle[k]][v], p[v]);
+        w = test.triangleWithin(p) ? 1 : 0;
+      }
+      ok = w == 1;
+    }
+    if (ok) return static_cast<int>(n);
+  }
+  return -1;
 }
 
 // spec 9.4: refinement rounds. Every leaf is tested with its current midpoint
 // mask; all that fail are split together (with the balance they force), and
 // the rounds go on until no leaf fails. A leaf is tested again only when new
 // or when its mask changed, which gives the same rounds as testing them all.
-uint32_t maxErrorTree(const quadtree::ErrorTest& test, Tree* tree) {
+// `choice` gets each leaf's candidate (table 9-2) for its final mask.
+uint32_t maxErrorTree(const quadtree::ErrorTest& test, Tree* tree, std::vector<std::vector<uint8_t>>* choice) {
   const int top = tree->top();
   std::vector<std::vector<uint8_t>> passed(top + 1), queued(top + 1);  // passed: mask + 1
+  choice->assign(top + 1, {});
   for (int l = 0; l <= top; ++l) {
     passed[l].assign(size_t{tree->cellsX(l)} * tree->cellsY(l), 0);
     queued[l].assign(passed[l].size(), 0);
+    (*choice)[l].assign(passed[l].size(), 0);
   }
   std::vector<CellRef> work{{top, 0, 0}}, next, failed;
   auto touch = [&](int l, uint32_t i, uint32_t j) {
@@ -65,13 +96,14 @@ uint32_t maxErrorTree(const quadtree::ErrorTest& test, Tree* tree) {
       if (tree->state(c.level, c.i, c.j) != quadtree::kLeaf) continue;
       const int mask = tree->midpointMask(c.level, c.i, c.j);
       if (passed[c.level][k] == mask + 1) continue;
-      bool ok = tree->inside(c.level, c.i, c.j);
-      if (ok && c.level > 0)
-        forEachCellTriangle(*tree, c.level, c.i, c.j, mask, [&](const uint32_t p[3][2]) {
-          if (ok) ok = test.triangleWithin(p);
-        });
-      if (ok) passed[c.level][k] = static_cast<uint8_t>(mask + 1);
-      else failed.push_back(c);
+      int pick = -1;
+      if (tree->inside(c.level, c.i, c.j)) pick = c.level == 0 ? 0 : firstCandidateWithin(*tree, test, c.level, c.i, c.j, mask);
+      if (pick >= 0) {
+        passed[c.level][k] = static_cast<uint8_t>(mask + 1);
+        (*choice)[c.level][k] = static_cast<uint8_t>(pick);
+      } else {
+        failed.push_back(c);
+      }
     }
     if (failed.empty()) return rounds;
     ++rounds;
@@ -156,13 +188,15 @@ class MeshBuilder {
   std::vector<uint32_t> index_;
 };
 
-// spec 9.3: every leaf's triangles from the look-up table.
-void meshTree(const Tree& tree, MeshBuilder* mesh) {
+// spec 9.3: every leaf's triangles from table 9-2: candidate 0 (the look-up
+// table), or each leaf's candidate chosen by the max-error test (9.4).
+void meshTree(const Tree& tree, const std::vector<std::vector<uint8_t>>* choice, MeshBuilder* mesh) {
   for (int l = tree.top(); l >= 0; --l)
     for (uint32_t j = 0; j < tree.cellsY(l); ++j)
       for (uint32_t i = 0; i < tree.cellsX(l); ++i)
         if (tree.state(l, i, j) == quadtree::kLeaf)
           forEachCellTriangle(tree, l, i, j, tree.midpointMask(l, i, j),
+                              choice ? (*choice)[l][size_t{j} * tree.cellsX(l) + i] : 0,
                               [&](const uint32_t p[3][2]) { mesh->triangle(p); });
 }
 
@@ -205,14 +239,15 @@ bool meshWith(const SampleField& field, const QuadtreeDetails* details, Quadtree
   if (criterion == QuadtreeCriterion::kWavelet) {
     tree.init(0, 0, w - 1, h - 1);
     waveletTree(*details, threshold, &tree);
-    meshTree(tree, &mesh);
+    meshTree(tree, nullptr, &mesh);
     return true;
   }
   const quadtree::ErrorTest test(field, threshold);
   if (tile_borders) tree.init(1, 1, w - 3, h - 3);
   else tree.init(0, 0, w - 1, h - 1);
-  *rounds = maxErrorTree(test, &tree);
-  meshTree(tree, &mesh);
+  std::vector<std::vector<uint8_t>> choice;
+  *rounds = maxErrorTree(test, &tree, &choice);
+  meshTree(tree, &choice, &mesh);
   if (tile_borders) meshRing(field, test, &mesh);
   return true;
 }

@@ -4,6 +4,7 @@
 // need (paper refs [11, 12]). Shared by the max-error and wavelet criteria.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -54,17 +55,33 @@ class Tree {
 
 // spec 9.3 table 9-1. A leaf's polygon points, counter-clockwise from its
 // lower-left corner: 0 BL, 1 B, 2 BR, 3 R, 4 TR, 5 T, 6 TL, 7 L (odd: the edge
-// midpoints), at offsets kPointOffset (in half cell sizes).
-constexpr uint8_t kPointOffset[8][2] = {{0, 0}, {1, 0}, {2, 0}, {2, 1},
-                                        {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+// midpoints), and 8 C, its centre, at offsets kPointOffset (in half cell sizes).
+constexpr uint8_t kPointOffset[9][2] = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2},
+                                        {1, 2}, {0, 2}, {0, 1}, {1, 1}};
+constexpr uint8_t kCentre = 8;
 struct CellTriangles {
   int count;
-  uint8_t point[6][3];  // counter-clockwise
+  uint8_t point[8][3];  // counter-clockwise
 };
 // The triangles of a leaf with midpoint mask `mask`; `rising` is the diagonal
 // choice of mask 0 (BL-TR when true, BR-TL otherwise).
 const CellTriangles& cellTriangles(int mask, bool rising);
-// The mask-0 diagonal of cell (i, j): through its parent's centre (spec 9.3).
+
+// spec 9.3 table 9-2: the candidate triangulations of a leaf with midpoint
+// mask `mask`, in the order the max-error criterion tries them (9.4): the
+// table 9-1 entry first, then every other triangulation of the polygon with
+// no flat triangle, then the fan from the centre. `triangle` lists the
+// distinct triangles of all candidates; each candidate names its triangles by
+// their index there, so that a leaf's test reads each triangle's samples once.
+struct CellCandidates {
+  std::vector<std::array<uint8_t, 3>> triangle;  // counter-clockwise
+  struct Candidate {
+    uint8_t count;
+    uint8_t triangle[8];  // indices into `triangle`
+  };
+  std::vector<Candidate> candidate;
+};
+const CellCandidates& cellCandidates(int mask, bool rising);
 inline bool risingDiagonal(uint32_t i, uint32_t j) { return ((i ^ j) & 1) == 0; }
 
 template <class Touched>
