@@ -12,6 +12,7 @@
 #include "mrsv/mesh_formats.h"
 #include "mrsv/quadtree_mesh.h"
 #include "mrsv/terrain_insertion.h"
+#include "mrsv/volume_insertion.h"
 #include "mrsv/tet_formats.h"
 
 namespace mrsv::cli {
@@ -38,6 +39,9 @@ const char kMeshHelp[] =
     "                        with at most N (quadtree)\n"
     "  --tets N              3-D: stop at N tets\n"
     "  --epsilon X           quadtree: the paper's wavelet criterion threshold\n"
+    "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
+    "                        mesh (default; fewer tets at the same error, D62) or the\n"
+    "                        paper's, to the trilinear interpolant of its cell\n"
     "  --progressive         insertion: refine level by level as the stream's bands\n"
     "                        come (spec 8.7) instead of once from the whole prefix\n"
     "  --no-border-rule      insertion, 2-D: let the greedy choice place the vertices\n"
@@ -73,7 +77,7 @@ int runMesh(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale"},
+                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance"},
                    {"progressive", "no-border-rule", "canonical", "quiet", "help"},
                    {}},
                   &error))
@@ -115,6 +119,8 @@ int runMesh(int argc, char** argv) {
   if (args.has("z-scale") && !parseDouble(args.value("z-scale"), &z_scale))
     return fail(cmd, "--z-scale must be a number", kExitUsage);
   const bool canonical = args.flag("canonical");
+  const std::string distance = args.has("distance") ? args.value("distance") : "mesh";
+  if (distance != "mesh" && distance != "trilinear") return fail(cmd, "--distance must be mesh or trilinear", kExitUsage);
 
   std::vector<uint8_t> bytes;
   if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
@@ -133,6 +139,7 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, in + ": the quadtree reconstructor meshes 2-D grids; use --method insertion", kExitUsage);
   if (dims == 2 && args.has("tets")) return fail(cmd, in + ": a 2-D grid gives triangles: use --triangles", kExitUsage);
   if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
+  if (dims == 2 && args.has("distance")) return fail(cmd, in + ": --distance is for 3-D grids", kExitUsage);
   if (!canonical && dims == 2 && !isTriangleFormat(out))
     return fail(cmd, out + ": a 2-D grid gives a triangle mesh: write .obj, .ply or .off", kExitUsage);
   if (!canonical && dims == 3 && isTriangleFormat(out))
@@ -147,8 +154,16 @@ int runMesh(int argc, char** argv) {
 
   const auto start = std::chrono::steady_clock::now();
   GridMesh mesh;
-  if (req.method == "insertion" && dims == 2) {
-    TerrainInserter inserter(grid.header.size_x, grid.header.size_y);
+  if (req.method == "insertion") {
+    // The same stages for both dimensions (spec 8.7, 10.7).
+    std::unique_ptr<TerrainInserter> terrain;
+    std::unique_ptr<VolumeInserter> volume;
+    if (dims == 2) {
+      terrain = std::make_unique<TerrainInserter>(grid.header.size_x, grid.header.size_y);
+    } else {
+      volume = std::make_unique<VolumeInserter>(grid.header.size_x, grid.header.size_y, grid.header.size_z);
+      volume->setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
+    }
     for (size_t k = 0; k < stages.size(); ++k) {
       DecodedGrid prefix;
       const DecodedGrid* source = &grid;
@@ -165,14 +180,26 @@ int runMesh(int argc, char** argv) {
         if (goal) progress.update(double(cells) / double(goal));
         return true;
       };
-      if (!inserter.refine(field, stages[k].shift, req.limits, &error, report))
-        return fail(cmd, in + ": " + error, kExitInvalidData);
-      if (!req.quiet && stages.size() > 1)
-        std::fprintf(stderr, "mrsv mesh: stage %zu of %zu (%llu bytes, lattice step %u): %llu triangles, max error %.4g\n",
+      const bool refined = terrain ? terrain->refine(field, stages[k].shift, req.limits, &error, report)
+                                   : volume->refine(field, stages[k].shift, req.limits, &error, report);
+      if (!refined) return fail(cmd, in + ": " + error, kExitInvalidData);
+      if (!req.quiet && stages.size() > 1) {
+        double max_error = 0;
+        if (terrain) {
+          max_error = terrain->maxError();
+        } else {
+          int64_t num = 0, den = 1;
+          volume->maxError(&num, &den);
+          max_error = double(num) / double(den);
+        }
+        std::fprintf(stderr, "mrsv mesh: stage %zu of %zu (%llu bytes, lattice step %u): %llu %s, max error %.4g\n",
                      k + 1, stages.size(), (unsigned long long)stages[k].bytes, 1u << stages[k].shift,
-                     (unsigned long long)inserter.cellCount(), inserter.maxError());
+                     (unsigned long long)(terrain ? terrain->cellCount() : volume->cellCount()),
+                     dims == 2 ? "triangles" : "tets", max_error);
+      }
     }
-    inserter.mesh(&mesh);
+    if (terrain) terrain->mesh(&mesh);
+    else volume->mesh(&mesh);
   } else if (req.method == "quadtree") {
     // The quadtree is bottom-up (paper 4): one stage, the last.
     const uint64_t stage_bytes = stages.back().bytes;

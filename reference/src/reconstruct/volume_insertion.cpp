@@ -80,7 +80,9 @@ struct VolumeInserter::State {
   AxisLattice lattice[3];
   bool wide = false;  // interpolants need 128 bits (spec 10.4's bound)
   bool bounded = false;
-  ErrorBound bound;
+  // This stage's bound num / den (spec 10.7, as 8.7).
+  __int128 bound_num = 0;
+  int64_t bound_den = 1;
 
   bool exactlyBetter(uint32_t a, uint32_t b) const {
     const __int128 l = worst[a].err * worst[b].det, r = worst[b].err * worst[a].det;
@@ -145,7 +147,7 @@ struct VolumeInserter::State {
     // A tet within the bound is never chosen before the stage ends: out of
     // the heap, which then holds only the tets left to refine (most tets are
     // within it at the end; the heap's cache misses were a third of the time).
-    if (worst[c].err > 0 && !(bounded && worst[c].err * bound.den <= __int128{bound.num} * worst[c].det))
+    if (worst[c].err > 0 && !(bounded && worst[c].err * bound_den <= bound_num * worst[c].det))
       heapPush(c);
   }
   void insertVertex(const GridPoint& p, uint32_t cell);
@@ -306,7 +308,17 @@ bool VolumeInserter::refine(const SampleField& field, unsigned shift, const Inse
 
   s.field = &field;
   s.bounded = limits.max_error.set();
-  s.bound = limits.max_error;
+  // spec 10.7 (as 8.7, decision D46): a stage on a lattice of step 2^shift > 1
+  // stops at 2^(shift+1) times the bound. No error exceeds 2^33 sample units
+  // (int32 samples), so the bound is capped at 2^34, which keeps its products
+  // with a tet's 6 x volume (below 2^48) within 128 bits.
+  s.bound_den = limits.max_error.den;
+  s.bound_num = limits.max_error.num;
+  if (shift > 0 && s.bounded) {
+    const __int128 cap = (__int128{1} << 34) * s.bound_den;
+    s.bound_num = s.bound_num << (shift + 1 > 40 ? 40 : shift + 1);
+    if (s.bound_num > cap) s.bound_num = cap;
+  }
   for (int a = 0; a < 3; ++a) s.lattice[a] = AxisLattice{int64_t{s.size[a]}, int64_t{1} << shift};
   // spec 10.4: 64-bit interpolants when max|sample| x side^3 < 2^57 (the
   // terms of the error stay below 24 x that), else 128-bit.
@@ -328,12 +340,11 @@ bool VolumeInserter::refine(const SampleField& field, unsigned shift, const Inse
   for (uint32_t c = 0; c < s.dt.cellSlots(); ++c)
     if (s.dt.isLive(c) && s.dt.isFinite(c)) s.scan(c);
 
-  const ErrorBound& bound = limits.max_error;
   uint64_t inserted = 0;
   while (!s.heap.empty()) {
     const uint32_t top = s.heap[0].cell;
     const State::Worst w = s.worst[top];
-    if (bound.set() && w.err * bound.den <= __int128{bound.num} * w.det) break;
+    if (s.bounded && w.err * s.bound_den <= s.bound_num * w.det) break;
     if (limits.max_cells != 0 && s.dt.finiteCellCount() >= limits.max_cells) break;
     const uint32_t x = uint32_t(w.sample % s.size[0]);
     const uint32_t y = uint32_t(w.sample / s.size[0] % s.size[1]);
