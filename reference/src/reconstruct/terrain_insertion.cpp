@@ -86,6 +86,13 @@ struct TerrainInserter::State {
     const Point2 a{va.x, va.y}, b{vb.x, vb.y}, c{vc.x, vc.y};
     const int64_t za = va.z, zb = int64_t{vb.z} - za, zc = int64_t{vc.z} - za;
     const int64_t den = orient2d(a, b, c);
+    // Pick's theorem: a triangle of grid points with twice its area 1 holds
+    // no grid point but its corners (on a lattice of step 1, every sample).
+    if (den == 1 && step == 1) {
+      worst_error[t] = 0.0;
+      queue.remove(t);
+      return;
+    }
     // Barycentric numerators as functions of the sample (x, y): w = ex * x + ey * y + e0.
     struct Edge {
       int64_t ex, ey, e0;
