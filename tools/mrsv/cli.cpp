@@ -98,7 +98,7 @@ Progress::Progress(const char* label, bool quiet)
     : label_(label), enabled_(!quiet && ::isatty(STDERR_FILENO)) {}
 
 Progress::~Progress() {
-  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r%s: done      \n", label_);
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r%s: done%24s\n", label_, "");
 }
 
 void Progress::update(double fraction) {
@@ -107,6 +107,13 @@ void Progress::update(double fraction) {
   if (percent == last_percent_) return;
   last_percent_ = percent;
   std::fprintf(stderr, "\r%s: %3d%%", label_, percent);
+  std::fflush(stderr);
+}
+
+void Progress::count(uint64_t done, const char* unit) {
+  if (!enabled_) return;
+  last_percent_ = 0;  // the destructor then prints "done"
+  std::fprintf(stderr, "\r%s: %llu %s", label_, static_cast<unsigned long long>(done), unit);
   std::fflush(stderr);
 }
 

@@ -1,6 +1,7 @@
 // Shared pieces of the mrsv command line: argument parsing, error lines, progress.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -63,6 +64,8 @@ class Progress {
   Progress(const char* label, bool quiet);
   ~Progress();
   void update(double fraction);
+  // For work whose total is not known in advance: a count that grows.
+  void count(uint64_t done, const char* unit);
 
  private:
   const char* label_;

@@ -178,6 +178,7 @@ int runMesh(int argc, char** argv) {
       const uint64_t goal = req.limits.max_cells;
       const auto report = [&](uint64_t cells) {
         if (goal) progress.update(double(cells) / double(goal));
+        else progress.count(cells, dims == 2 ? "triangles" : "tets");
         return true;
       };
       const bool refined = terrain ? terrain->refine(field, stages[k].shift, req.limits, &error, report)
