@@ -15,6 +15,7 @@
 #include <vector>
 #include <string>
 
+#include "grid_mesh_checks.h"
 #include "mrsv/encode.h"
 #include "reconstruct/quadtree_tree.h"
 #include "shared_data.h"
@@ -51,69 +52,16 @@ int64_t cross(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b
   return (int64_t{b[0]} - a[0]) * (int64_t{c[1]} - a[1]) - (int64_t{b[1]} - a[1]) * (int64_t{c[0]} - a[0]);
 }
 
-// Crack-free: positive triangles covering the grid's rectangle exactly, each
-// directed edge once, interior edges in two triangles, boundary edges on the
-// grid's border, and no vertex inside another edge (no T-junction).
-void expectCrackFree(const GridMesh& m) {
-  const uint32_t w = m.size[0], h = m.size[1];
-  std::vector<int32_t> vertex_at(size_t{w} * h, -1);
-  for (size_t v = 0; v < m.points.size(); ++v) vertex_at[m.points[v][1] * size_t{w} + m.points[v][0]] = int32_t(v);
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  int64_t area = 0;
-  for (const auto& c : m.cells) {
-    const int64_t d = cross(m.points[c[0]], m.points[c[1]], m.points[c[2]]);
-    ASSERT_GT(d, 0) << "a triangle that is not counter-clockwise";
-    area += d;
-    for (int k = 0; k < 3; ++k) {
-      const std::pair<uint32_t, uint32_t> e(c[k], c[(k + 1) % 3]);
-      ASSERT_EQ(++directed[e], 1) << "a directed edge twice";
-    }
-  }
-  EXPECT_EQ(area, 2 * int64_t{w - 1} * (h - 1)) << "the triangles do not tile the grid";
-  for (const auto& [e, n] : directed) {
-    const auto& a = m.points[e.first];
-    const auto& b = m.points[e.second];
-    if (!directed.count({e.second, e.first})) {
-      const bool on_border = (a[0] == b[0] && (a[0] == 0 || a[0] == w - 1)) ||
-                             (a[1] == b[1] && (a[1] == 0 || a[1] == h - 1));
-      ASSERT_TRUE(on_border) << "a boundary edge inside the grid";
-    }
-    if (e.first > e.second && directed.count({e.second, e.first})) continue;
-    const int64_t dx = int64_t{b[0]} - a[0], dy = int64_t{b[1]} - a[1];
-    const int64_t g = std::gcd(std::abs(dx), std::abs(dy));
-    for (int64_t k = 1; k < g; ++k) {
-      const uint64_t x = a[0] + dx / g * k, y = a[1] + dy / g * k;
-      ASSERT_LT(vertex_at[y * w + x], 0) << "T-junction at " << x << "," << y;
-    }
-  }
-}
+// Crack-free and the bound on every sample, by the shared independent checks
+// (grid_mesh_checks.h): counter-clockwise triangles tiling the grid, every
+// edge in one triangle each way or on the grid's border (so no T-junction).
+void expectCrackFree(const GridMesh& m) { EXPECT_EQ(test::triangulationProblem(m), ""); }
 
-// The maximum error against every sample, by an independent rasterisation:
-// each sample in a closed triangle is compared with the triangle's plane in
-// exact rationals, and every sample must be covered.
+// The number of samples farther than `e` from the mesh (0 or 1 here: the
+// check stops counting at the first).
 int64_t worstOver(const SampleField& f, const GridMesh& m, const ErrorBound& e) {
-  std::vector<uint8_t> covered(f.values.size(), 0);
-  int64_t violations = 0;
-  for (const auto& c : m.cells) {
-    const auto &p = m.points[c[0]], &q = m.points[c[1]], &r = m.points[c[2]];
-    const int64_t d = cross(p, q, r);
-    const uint32_t xl = std::min({p[0], q[0], r[0]}), xh = std::max({p[0], q[0], r[0]});
-    const uint32_t yl = std::min({p[1], q[1], r[1]}), yh = std::max({p[1], q[1], r[1]});
-    for (uint32_t y = yl; y <= yh; ++y)
-      for (uint32_t x = xl; x <= xh; ++x) {
-        const std::array<uint32_t, 3> s{x, y, 0};
-        const int64_t w0 = cross(q, r, s), w1 = cross(r, p, s), w2 = cross(p, q, s);
-        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-        covered[size_t{y} * f.size[0] + x] = 1;
-        const __int128 plane = __int128(f.at(p[0], p[1])) * w0 + __int128(f.at(q[0], q[1])) * w1 +
-                               __int128(f.at(r[0], r[1])) * w2;
-        __int128 diff = __int128(f.at(x, y)) * d - plane;
-        if (diff < 0) diff = -diff;
-        if (diff * e.den > __int128(e.num) * d) ++violations;
-      }
-  }
-  for (uint8_t c : covered) violations += c ? 0 : 1;
-  return violations;
+  double worst = 0;
+  return test::withinBoundEverywhere(f, m, e, &worst) ? 0 : 1;
 }
 
 GridMesh meshAt(const SampleField& f, int64_t e, bool tiles = false) {
