@@ -25,7 +25,8 @@ The decoder is given as a command template with {in} and {out}:
     With --known-failures, an entry marked "known_failure" (a reported disagreement
     of the reference reconstructor) must fail, and is counted apart. With --clause C
     (repeatable) only the vectors of spec chapter C run (8: 2-D insertion, 9: quadtree,
-    10: 3-D insertion), for a reconstructor that implements some chapters only.
+    10: 3-D insertion), for a reconstructor that implements some chapters only; with
+    --skip-args WORD the cases whose options hold WORD are skipped.
 
 Examples:
   run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}"
@@ -78,6 +79,8 @@ def run_mesh_cases(args, vector, path, out):
     """spec 8: each reconstruction of the vector; returns (passed, failures, known failures)."""
     passed, failures, known = 0, [], 0
     for case in vector["reconstruct"]:
+        if any(word in case["args"] for word in args.skip_args):
+            continue
         if os.path.exists(out):
             os.remove(out)
         label = f"{vector['file']} {' '.join(case['args'])}"
@@ -136,6 +139,9 @@ def main():
     parser.add_argument("--clause", action="append",
                         help="mesh mode: only the vectors of this spec chapter (the manifest's clause; repeatable), "
                              "for a reconstructor of some chapters only")
+    parser.add_argument("--skip-args", action="append", default=[],
+                        help="mesh mode: skip the cases whose options hold this word (repeatable), for a "
+                             "reconstructor without that option")
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
 
