@@ -336,16 +336,18 @@ def build():
 CODED_PREFIX = "vectors/coded_"
 PT_PREFIX = "vectors/pt_"
 RECONSTRUCT_PREFIX = "vectors/reconstruct/"
+RECONSTRUCT3_PREFIXES = ("vectors/reconstruct3/", "vectors/quadtree/")   # reconstruct_vectors3.py
 
 
 def coded_entries():
-    """The manifest entries written by make_coded_vectors.py and pt_vectors.py, as committed."""
+    """The manifest entries written by make_coded_vectors.py, pt_vectors.py and the
+    reconstruct_vectors scripts, as committed."""
     path = os.path.join(HERE, "manifest.json")
     if not os.path.exists(path):
         return []
     with open(path, encoding="utf-8") as f:
         return [e for e in json.load(f)["vectors"] if e["file"].startswith(
-            (CODED_PREFIX, PT_PREFIX, RECONSTRUCT_PREFIX))]
+            (CODED_PREFIX, PT_PREFIX, RECONSTRUCT_PREFIX) + RECONSTRUCT3_PREFIXES)]
 
 
 def profile_of(data):

@@ -23,7 +23,10 @@ The decoder is given as a command template with {in} and {out}:
     output of 8.2 with the entry's SHA-256, or, for an entry marked "refused", exit
     non-zero and leave no file at {out}. Vectors without "reconstruct" are skipped.
     With --known-failures, an entry marked "known_failure" (a reported disagreement
-    of the reference reconstructor) must fail, and is counted apart.
+    of the reference reconstructor) must fail, and is counted apart. With --clause C
+    (repeatable) only the vectors of spec chapter C run (8: 2-D insertion, 9: quadtree,
+    10: 3-D insertion), for a reconstructor that implements some chapters only; with
+    --skip-args WORD the cases whose options hold WORD are skipped.
 
 Examples:
   run_conformance.py --decoder "build/mrsv decode --canonical {in} {out}"
@@ -76,6 +79,8 @@ def run_mesh_cases(args, vector, path, out):
     """spec 8: each reconstruction of the vector; returns (passed, failures, known failures)."""
     passed, failures, known = 0, [], 0
     for case in vector["reconstruct"]:
+        if any(word in case["args"] for word in args.skip_args):
+            continue
         if os.path.exists(out):
             os.remove(out)
         label = f"{vector['file']} {' '.join(case['args'])}"
@@ -131,6 +136,12 @@ def main():
     parser.add_argument("--level-decoder", help="command template with {in}, {out} and {vertices}")
     parser.add_argument("--profile", action="append", choices=("grid", "mesh", "tet"),
                         help="run only this profile's vectors (and those of no profile)")
+    parser.add_argument("--clause", action="append",
+                        help="mesh mode: only the vectors of this spec chapter (the manifest's clause; repeatable), "
+                             "for a reconstructor of some chapters only")
+    parser.add_argument("--skip-args", action="append", default=[],
+                        help="mesh mode: skip the cases whose options hold this word (repeatable), for a "
+                             "reconstructor without that option")
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
 
@@ -145,7 +156,7 @@ def main():
             path = os.path.join(base, vector["file"])
             out = os.path.join(tmp, "out.bin")
             if args.mode == "mesh":
-                if "reconstruct" in vector:
+                if "reconstruct" in vector and (not args.clause or vector.get("clause") in args.clause):
                     p, f, k = run_mesh_cases(args, vector, path, out)
                     passed, known = passed + p, known + k
                     failures += f

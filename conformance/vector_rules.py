@@ -8,6 +8,10 @@ table below adds what each vector tests in particular; an invalid vector must be
 listed.
 """
 
+R10_MESH = ["R8.2-1", "R8.2-2", "R8.2-3", "R10-1", "R10.1-2", "R10.2-1", "R10.2-2", "R10.2-3", "R10.3-1", "R10.4-1", "R10.4-2", "R10.4-3", "R10.5-1", "R10.6-1", "R10.7-1", "R10.7-2"]
+
+R9_QUADTREE = ["R8.2-1", "R8.2-2", "R8.2-3", "R9.0-1", "R9.0-2", "R9.2-1", "R9.2-2", "R9.2-3", "R9.3-1", "R9.3-2", "R9.3-3", "R9.3-4", "R9.3-5", "R9.3-6", "R9.4-1", "R9.4-2", "R9.4-3", "R9.5-1", "R9.5-2", "R9.6-1"]
+
 R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "R8.5-1", "R8.5-2", "R8.5-3", "R8.5-4", "R8.5-5", "R8.6-1", "R8.6-2"]
 
 RULES = {
@@ -306,6 +310,22 @@ RULES = {
     **{n: R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"]
        for n in ("fuji33_mask_lossless_progressive", "fuji33_mask_psnr45_progressive")},
     **{n: ["R8.1-2"] for n in ("float32_33x33_stored", "line_33_int16", "col_1x33_int16", "row_33x1_int16")},
+
+    # --- mesh reconstruction of 3-D grids (reconstruct_vectors3.py; spec 10) ---
+    **{n: R10_MESH for n in ("head9x7x6_psnr35", "head17x17x9_bspline_psnr35_progressive")},
+    "head9_bspline_lossless_progressive": R10_MESH[:3] + ["R8.7-1"] + R10_MESH[3:],
+    "head5_stored": R10_MESH[:3] + ["R8.5-2", "R8.7-1"] + R10_MESH[3:],
+    **{n: [t for t in R10_MESH if t != "R10.6-1"] for n in ("headsq6x5x4_uint16_stored", "head2x2x2_stored")},
+    **{n: ["R10.1-1"] for n in ("head5_float32_stored", "head1x5x5_stored", "head5x5x1_stored")},
+
+    # --- quadtree reconstruction (reconstruct_vectors3.py; spec 9; hashes from the reference) ---
+    **{n: R9_QUADTREE for n in ("qt_sh33_bspline_lossless_progressive", "qt_sh33_cdf97_lossless_progressive",
+                                "qt_bt65x49_bspline_psnr40")},
+    "qt_sh33_stored": R9_QUADTREE[:5] + ["R9.1-1"] + R9_QUADTREE[8:],
+    "qt_sh17x65_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:],
+    **{n: R9_QUADTREE[:5] + R9_QUADTREE[8:-3] for n in ("qt_grid_3x3_stored", "qt_grid_2x2_stored")},
+    "qt_grid_5x4_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-1],
+    **{n: ["R9.1-1"] for n in ("qt_float32_33x33_stored", "qt_col_1x33_stored", "qt_head5_stored")},
 }
 
 
