@@ -245,7 +245,10 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   // spec 8.7: a stage on a lattice of step 2^shift > 1 stops at 2^(shift+1)
   // times the bound (decision D46: coarse stages, which see blurred samples,
   // then place few vertices the finer stages would not have chosen).
-  const __int128 bound_num = __int128{limits.max_error.num} << (shift == 0 ? 0 : shift + 1);
+  // An unset bound is num = -1 and is never shifted (a shift of a negative
+  // value is undefined behaviour).
+  const __int128 bound_num =
+      limits.max_error.set() ? __int128{limits.max_error.num} << (shift == 0 ? 0 : shift + 1) : -1;
   const int64_t bound_den = limits.max_error.den;
   const bool border = limits.border_rule && limits.max_error.set();
   if (border) s.borderRule(bound_num, bound_den);
