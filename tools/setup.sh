@@ -14,6 +14,7 @@ packages=(
   zstd libzstd-dev                          # the ../shared/data files are zstd frames
   python3                                   # conformance runner and vector generator
   python3-vtk9 python3-meshio               # the real clients of our .vtu/.vtk files (tet_clients_test)
+  python3-matplotlib                        # the section 7 pictures (tools/experiments, experiments_section7_quick)
 )
 
 missing=()
