@@ -176,7 +176,8 @@ if [ ! -e "$work/x.obj" ] && [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed
 # 3-D: tets by insertion, opened back by our reader; 2-D options refused.
 expect 0 "$mrsv" mesh --quiet --max-error 8 --progressive "$work/g.mrsv" "$work/g_ins.vtu"
 expect 0 "$mrsv" tetrahedralize "$work/g_ins.vtu" "$work/g_ins.mesh"; stdout_has "1 fields (value)"
-expect 0 "$mrsv" mesh --quiet --tets 300 --distance trilinear "$work/g.mrsv" "$work/g_t.node"
+expect 0 "$mrsv" mesh --quiet --tets 300 --max-error 20 --distance trilinear "$work/g.mrsv" "$work/g_t.node"
+expect 2 "$mrsv" mesh --tets 300 --distance trilinear "$work/g.mrsv" "$work/g_t2.node"; stderr_has "needs --max-error"; one_line_stderr
 expect 2 "$mrsv" mesh --max-error 8 --method quadtree "$work/g.mrsv" "$work/x.vtu"; stderr_has "2-D grids"; one_line_stderr
 expect 2 "$mrsv" mesh --triangles 50 "$work/g.mrsv" "$work/x.vtu"; stderr_has "use --tets"; one_line_stderr
 expect 2 "$mrsv" mesh --max-error 8 "$work/g.mrsv" "$work/x.obj"; stderr_has "tet mesh"; one_line_stderr

@@ -42,6 +42,7 @@ const char kMeshHelp[] =
     "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
     "                        mesh (default; fewer tets at the same error, D62) or the\n"
     "                        paper's, to the trilinear interpolant of its cell\n"
+    "                        (needs --max-error)\n"
     "  --progressive         insertion: refine level by level as the stream's bands\n"
     "                        come (spec 8.7) instead of once from the whole prefix\n"
     "  --no-border-rule      insertion, 2-D: let the greedy choice place the vertices\n"
@@ -140,6 +141,10 @@ int runMesh(int argc, char** argv) {
   if (dims == 2 && args.has("tets")) return fail(cmd, in + ": a 2-D grid gives triangles: use --triangles", kExitUsage);
   if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
   if (dims == 2 && args.has("distance")) return fail(cmd, in + ": --distance is for 3-D grids", kExitUsage);
+  // spec 10.6: the paper's pass inserts what exceeds E; without E it has nothing to
+  // compare with, and the mesh would silently be the `mesh` distance's.
+  if (distance == "trilinear" && !args.has("max-error"))
+    return fail(cmd, "--distance trilinear needs --max-error (the paper's pass compares with E)", kExitUsage);
   if (!canonical && dims == 2 && !isTriangleFormat(out))
     return fail(cmd, out + ": a 2-D grid gives a triangle mesh: write .obj, .ply or .off", kExitUsage);
   if (!canonical && dims == 3 && isTriangleFormat(out))
