@@ -28,6 +28,13 @@ int runTetCompare(const Args& args, uint64_t samples, uint64_t seed, unsigned th
   options.threads = threads;
   const TetCompareReport r = compareTetMeshes(a, b, options);
   if (!r.error.empty()) return fail(cmd, r.error, kExitInvalidData);
+  // Meshes of one field in different frames (a crop kept at its place in the
+  // volume against one moved to the origin) give a low PSNR that reads like a
+  // poor approximation: say so when many samples fall outside B.
+  if (r.has_field && r.field.samples > 0 && r.field.outside_b * 100 > r.field.samples)
+    std::fprintf(stderr, "mrsv compare: warning: %llu of %llu samples (%.1f %%) lie outside B: do A and B share "
+                 "their origin and spacing?\n", (unsigned long long)r.field.outside_b,
+                 (unsigned long long)r.field.samples, 100.0 * double(r.field.outside_b) / double(r.field.samples));
   if (args.flag("json")) {
     std::printf("%s\n", tetCompareJson(r).c_str());
     return kExitOk;
