@@ -120,19 +120,8 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
 }
 
 uint32_t StarLink::localOfRank(uint32_t r) const {
-  // Small links (nearly all): the vertex with r smaller ones, counted
-  // without branches, costs less than copying and partitioning.
-  const uint32_t m = static_cast<uint32_t>(vertices.size());
-  if (m <= kDense) {
-    // Vertex numbers are below 2^28 (B.6): as int32_t the comparisons
-    // vectorise (SSE2 compares signed words only).
-    const int32_t* v = reinterpret_cast<const int32_t*>(vertices.data());
-    for (uint32_t p = 0; p < m; ++p) {
-      uint32_t below = 0;
-      for (uint32_t q = 0; q < m; ++q) below += v[q] < v[p];
-      if (below == r) return p;
-    }
-  }
+  // A partial sort of a copy: counting, for each vertex, the smaller ones
+  // (even vectorised) cost half as much again on the CT crop's links.
   ranked_.assign(vertices.begin(), vertices.end());
   std::nth_element(ranked_.begin(), ranked_.begin() + r, ranked_.end());
   return local_of_[ranked_[r]];
