@@ -28,6 +28,23 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uin
     mesh.incident.pop_back();
     return problem;
   }
+  recordSplit(vs, closed);
+  return "";
+}
+
+std::string ProgressiveTetMesh::Impl::applyDecodedSplit(uint32_t vs, bool closed) {
+  const uint32_t vt = mesh.vertexCount() - 1;
+  mesh.incident.emplace_back();
+  std::string problem = applyStarSplit(&mesh, star_link, vt, walk_local, closed, &scratch, &region, &walk_global);
+  if (!problem.empty()) {
+    mesh.incident.pop_back();
+    return problem;
+  }
+  recordSplit(vs, closed);
+  return "";
+}
+
+void ProgressiveTetMesh::Impl::recordSplit(uint32_t vs, bool closed) {
   PtSplitRecord r;
   r.vs = vs;
   r.moved_begin = static_cast<uint32_t>(moved.size());
@@ -40,11 +57,9 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uin
   splits.push_back(r);
   tet_count_after.push_back(static_cast<uint32_t>(mesh.tets.size()));
   ++level;
-  return "";
 }
 
 template std::string ProgressiveTetMesh::Impl::applyNewSplit(const Link&, uint32_t, bool);
-template std::string ProgressiveTetMesh::Impl::applyNewSplit(const StarLink&, uint32_t, bool);
 
 void ProgressiveTetMesh::Impl::redo(uint32_t k) {
   const PtSplitRecord& r = splits[k];

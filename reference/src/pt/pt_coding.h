@@ -115,7 +115,8 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
     if (Coder::kEncoding && c0 >= m) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.cut_start, ctx.escape, &c0)) return "cut_start: length prefix of 31 bits";
     if (c0 >= m) return "cut_start " + std::to_string(c0) + " is not below the link's " + std::to_string(m) + " vertices";
-    if (!link.rotation(c0, link.lowestNeighbour(c0), &s->rotation)) return "the link is not a manifold at c_0";
+    c0 = link.localOfRank(c0);  // the c0-th smallest vertex number
+    if (!link.rotationFromLowest(c0, &s->rotation)) return "the link is not a manifold at c_0";
     uint32_t j = Coder::kEncoding ? indexIn(s->rotation, given[1]) : 0;
     if (Coder::kEncoding && (given.size() < 3 || j == s->rotation.size())) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.cut_first[degreeContext(s->rotation.size())], ctx.escape, &j))
@@ -126,9 +127,7 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
     prev = c0;
     cur = s->rotation[j];
   } else {
-    s->queue.clear();  // the link's boundary vertices, ascending
-    for (uint32_t v = 0; v < m; ++v)
-      if (link.on_boundary[v]) s->queue.push_back(v);
+    link.boundaryVertices(&s->queue);  // ascending vertex numbers
     uint32_t b = Coder::kEncoding ? indexIn(s->queue, given[0]) : 0;
     if (Coder::kEncoding && b == s->queue.size()) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.path_start, ctx.escape, &b)) return "path_start: length prefix of 31 bits";

@@ -49,7 +49,7 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   if (s.mesh.tets.size() + cutEdgeCount(static_cast<uint32_t>(s.walk_global.size()), closed) > h.tet_count)
     problem = "the split would make more tets than tet_count";
   else
-    problem = s.applyNewSplit(s.star_link, vs, closed);
+    problem = s.applyDecodedSplit(vs, closed);
   if (!problem.empty()) {
     s.mesh.positions.pop_back();
     s.mesh.scalars.resize(s.mesh.scalars.size() - h.fields.size());
@@ -103,14 +103,15 @@ Error decodeChunks(DecodedTetMesh* out) {
         return Error{Status::kBadEntropyPayload, at + 4, "TSPL", "coded data must start with a 0 byte"};
       DecodingCoder coder{&rc};
       const uint32_t vertices = s.mesh.vertexCount();
-      uint32_t done = 0;
-      for (uint32_t v = 0; done < split_count; ++v) {
-        auto fail = [&](const std::string& problem) {
-          const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
-          return Error{status, at + 4, "TSPL.vertex_split",
-                       "batch " + std::to_string(out->batches_decoded) + ", split " + std::to_string(done) +
-                           " (vertex " + std::to_string(v) + "): " + problem};
-        };
+      uint32_t done = 0, v = 0;
+      // Made once, not per flag: the flag loop runs about 30 times per split.
+      auto fail = [&](const std::string& problem) {
+        const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
+        return Error{status, at + 4, "TSPL.vertex_split",
+                     "batch " + std::to_string(out->batches_decoded) + ", split " + std::to_string(done) +
+                         " (vertex " + std::to_string(v) + "): " + problem};
+      };
+      for (; done < split_count; ++v) {
         if (v == vertices) return fail("the flags end before split_count splits");
         if (!coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], 0)) continue;
         if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);

@@ -9,6 +9,7 @@
 
 #include "mrsv/progressive_tet_mesh.h"
 #include "tetmesh/star_link.h"
+#include "tetmesh/star_split.h"
 #include "tetmesh/tet_complex.h"
 #include "tetmesh/vertex_split.h"
 
@@ -52,6 +53,12 @@ struct ProgressiveTetMesh::Impl {
   // vt is removed again.
   template <class LinkT>
   std::string applyNewSplit(const LinkT& link_of_vs, uint32_t vs, bool closed);
+  // The same for the decoder: the cut is walk_local of star_link, the link
+  // of vs (applyStarSplit() in place of splitRegion() and applySplit()).
+  std::string applyDecodedSplit(uint32_t vs, bool closed);
+  // Records the split just applied: region and walk_global hold its moved
+  // tets and cut.
+  void recordSplit(uint32_t vs, bool closed);
   void redo(uint32_t k);
   void undo(uint32_t k);
 };

@@ -5,6 +5,7 @@ set(MRSV_PT_DECODE_SOURCES
   reference/src/tetmesh/tet_complex.cpp
   reference/src/tetmesh/star_link.cpp
   reference/src/tetmesh/vertex_split.cpp
+  reference/src/tetmesh/star_split.cpp
   reference/src/pt/pt_header.cpp
   reference/src/pt/progressive_tet_mesh.cpp
   reference/src/pt/pt_decode.cpp)
@@ -14,6 +15,11 @@ set(MRSV_PT_TESTS
   reference/tests/pt_stream_test.cpp
   reference/tests/pt_real_data_test.cpp
   reference/tests/shared_data.cpp)
+
+# tools/bench/pt_decode_bench: decoding alone from stream files, for the
+# decode speed goal and profiling; it needs only the decoder.
+add_executable(pt_decode_bench tools/bench/pt_decode_bench.cpp)
+target_link_libraries(pt_decode_bench PRIVATE mrsv_decode)
 
 # tools/bench/pt_bench: issue 21's measured goals (build, size, decode,
 # levels) beside xz -9 and CGAL's Tetrahedral_remeshing in the same run.

@@ -29,6 +29,24 @@ inline int orient3dBelow2to20(const Point3i& a, const Point3i& b, const Point3i&
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
+// orient3d(a, b, c, d) from the differences B = b - a, C = c - a, D = d - a,
+// for callers that test many tets sharing the corner a (a vertex split: every
+// tet it changes or adds has vt as a corner) and subtract once per point.
+// Below2to20: the bound of orient3dBelow2to20 on the points; otherwise the
+// differences lie in (-2^30, 2^30) and the determinant is taken in 128 bits.
+using Diff3 = std::array<int64_t, 3>;
+inline int orientOfDifferences(const Diff3& b, const Diff3& c, const Diff3& d, bool below_2to20) {
+  if (below_2to20) {
+    const int64_t det = b[0] * (c[1] * d[2] - c[2] * d[1]) - b[1] * (c[0] * d[2] - c[2] * d[0]) +
+                        b[2] * (c[0] * d[1] - c[1] * d[0]);
+    return det > 0 ? 1 : (det < 0 ? -1 : 0);
+  }
+  const __int128 det = __int128{b[0]} * (__int128{c[1]} * d[2] - __int128{c[2]} * d[1]) -
+                       __int128{b[1]} * (__int128{c[0]} * d[2] - __int128{c[2]} * d[0]) +
+                       __int128{b[2]} * (__int128{c[0]} * d[1] - __int128{c[1]} * d[0]);
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
 // The sign of det[b - a, c - a, d - a]: +1, 0 or -1.
 inline int orient3d(const Point3i& a, const Point3i& b, const Point3i& c, const Point3i& d) {
   // Meshes quantised to 20 bits or less always take the 64-bit path; one OR

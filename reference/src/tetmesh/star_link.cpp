@@ -2,20 +2,13 @@
 #include "tetmesh/star_link.h"
 
 #include <algorithm>
+#include <cstddef>
 
 namespace mrsv {
 
 // A repeated edge (no manifold) keeps its first triangle, as
 // Link::triangleFrom finds it.
-inline void StarLink::insert(uint32_t a, uint32_t b, uint32_t third, uint32_t f) {
-  if (dense_used_) {
-    const uint32_t e = a * kDense + b;
-    if (dense_stamp_[e] == stamp_) return;
-    dense_stamp_[e] = stamp_;
-    dense_triangle_[e] = f;
-    dense_third_[e] = third;
-    return;
-  }
+inline void StarLink::insertHashed(uint32_t a, uint32_t b, uint32_t third, uint32_t f) {
   const uint64_t key = (uint64_t{a} << 32) | b;
   uint32_t e = slotOf(key);
   while (edge_key_[e] != kEmpty && edge_key_[e] != key) e = (e + 1) & mask_;
@@ -23,6 +16,25 @@ inline void StarLink::insert(uint32_t a, uint32_t b, uint32_t third, uint32_t f)
   edge_key_[e] = key;
   edge_triangle_[e] = f;
   edge_third_[e] = third;
+}
+
+// The directed edges of a link too large for dense_: a hash table at most
+// half full.
+void StarLink::buildHashed() {
+  const uint32_t faces = static_cast<uint32_t>(triangles.size());
+  uint32_t capacity = 16;
+  shift_ = 60;
+  while (capacity < 6 * faces) capacity *= 2, --shift_;
+  mask_ = capacity - 1;
+  edge_key_.assign(capacity, kEmpty);
+  edge_triangle_.resize(capacity);
+  edge_third_.resize(capacity);
+  for (uint32_t f = 0; f < faces; ++f) {
+    const auto& t = triangles[f];
+    insertHashed(t[0], t[1], t[2], f);
+    insertHashed(t[1], t[2], t[0], f);
+    insertHashed(t[2], t[0], t[1], f);
+  }
 }
 
 void StarLink::build(const TetComplex& mesh, uint32_t v) {
@@ -36,60 +48,59 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
     stamp_of_.resize(size, 0);
     local_of_.resize(size, 0);
   }
-  if (dense_stamp_.empty()) {
-    dense_stamp_.assign(kDense * kDense, 0);
-    dense_triangle_.resize(kDense * kDense);
-    dense_third_.resize(kDense * kDense);
-  }
+  if (dense_.empty()) dense_.assign(kDense * kDense, 0);
   if (++stamp_ == 0) {
     std::fill(stamp_of_.begin(), stamp_of_.end(), 0);
-    std::fill(dense_stamp_.begin(), dense_stamp_.end(), 0);
     stamp_ = 1;
   }
-  // The triangles as vertex numbers and the link's vertices, then ascending
-  // local numbers (7.6.1), as Link builds them.
+  if (++edge_stamp_ == 1u << 16) {
+    std::fill(dense_.begin(), dense_.end(), 0);
+    edge_stamp_ = 1;
+  }
   triangles.resize(faces);
   triangle_tet.assign(star.begin(), star.end());
   // Collected in gathered_, which only grows: resizing `vertices` up to
   // 3 * faces and back down at every split filled it each time.
   if (gathered_.size() < 3 * size_t{faces}) gathered_.resize(3 * size_t{faces});
+  // One pass over the star: each tet's link triangle (7.6.1), its corners
+  // numbered as first met, and its directed edges in dense_ while the link
+  // fits it. Raw pointers: through the vectors the compiler reloads every
+  // base pointer after each store.
   uint32_t* gathered = gathered_.data();
+  uint32_t* stamp_of = stamp_of_.data();
+  uint32_t* local_of = local_of_.data();
+  uint32_t* dense = dense_.data();
+  std::array<uint32_t, 3>* tris = triangles.data();
+  const Tet* tets = mesh.tets.data();
+  const uint32_t stamp = stamp_;
+  bool fits = faces <= kDenseFaces;
   uint32_t m = 0;
   for (uint32_t f = 0; f < faces; ++f) {
-    const Tet& t = mesh.tets[star[f]];
+    const Tet& t = tets[star[f]];
     const int at = t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : 3;
+    uint32_t l[3];
     for (int j = 0; j < 3; ++j) {
       const uint32_t u = t[kLinkOrder[at][j]];
-      triangles[f][j] = u;
-      if (stamp_of_[u] != stamp_) {
-        stamp_of_[u] = stamp_;
+      if (stamp_of[u] != stamp) {
+        stamp_of[u] = stamp;
+        local_of[u] = m;
         gathered[m++] = u;
       }
+      l[j] = local_of[u];
+    }
+    tris[f] = {l[0], l[1], l[2]};
+    if (fits && m <= kDense) {
+      const uint32_t tag = edge_stamp_;
+      dense[l[0] * kDense + l[1]] = denseEntry(tag, f, l[2]);
+      dense[l[1] * kDense + l[2]] = denseEntry(tag, f, l[0]);
+      dense[l[2] * kDense + l[0]] = denseEntry(tag, f, l[1]);
+    } else {
+      fits = false;
     }
   }
   vertices.assign(gathered, gathered + m);
-  std::sort(vertices.begin(), vertices.end());
-  for (uint32_t i = 0; i < m; ++i) local_of_[vertices[i]] = i;
-  // The directed edges: dense_ for small links, else a hash table at most
-  // half full.
-  dense_used_ = m <= kDense;
-  if (!dense_used_) {
-    uint32_t capacity = 16;
-    shift_ = 60;
-    while (capacity < 6 * faces) capacity *= 2, --shift_;
-    mask_ = capacity - 1;
-    edge_key_.assign(capacity, kEmpty);
-    edge_triangle_.resize(capacity);
-    edge_third_.resize(capacity);
-  }
-  for (uint32_t f = 0; f < faces; ++f) {
-    std::array<uint32_t, 3>& tri = triangles[f];
-    const uint32_t a = local_of_[tri[0]], b = local_of_[tri[1]], c = local_of_[tri[2]];
-    tri = {a, b, c};
-    insert(a, b, c, f);
-    insert(b, c, a, f);
-    insert(c, a, b, f);
-  }
+  dense_used_ = fits;
+  if (!dense_used_) buildHashed();
   // spec 7.3: every level's links are spheres or disks, and a sphere on m
   // vertices has exactly 2m - 4 triangles, a disk fewer: only a link with
   // another count can have a boundary edge, and only then are its edges
@@ -108,28 +119,36 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   }
 }
 
-uint32_t StarLink::lowestNeighbour(uint32_t p) const {
-  // Around an interior p (where cut() asks) its neighbours form one cycle of
-  // next(p, .): from the first neighbour found, follow it. Should it break,
-  // every triangle through p is looked at instead.
+uint32_t StarLink::localOfRank(uint32_t r) const {
+  // A partial sort of a copy: counting, for each vertex, the smaller ones
+  // (even vectorised) cost half as much again on the CT crop's links.
+  ranked_.assign(vertices.begin(), vertices.end());
+  std::nth_element(ranked_.begin(), ranked_.begin() + r, ranked_.end());
+  return local_of_[ranked_[r]];
+}
+
+void StarLink::boundaryVertices(std::vector<uint32_t>* out) const {
+  out->clear();
+  for (uint32_t p = 0; p < vertices.size(); ++p)
+    if (on_boundary[p]) out->push_back(p);
+  std::sort(out->begin(), out->end(), [&](uint32_t a, uint32_t b) { return vertices[a] < vertices[b]; });
+}
+
+bool StarLink::rotationFromLowest(uint32_t p, std::vector<uint32_t>* out) const {
+  // Around an interior p (where cut() asks) its neighbours form one cycle
+  // of next(p, .): the cycle from any neighbour, turned to start at the
+  // smallest vertex number, is the rotation from there (one walk, not a
+  // walk to find the smallest and another from it).
   uint32_t first = UINT32_MAX;
   for (uint32_t f = 0; f < triangles.size() && first == UINT32_MAX; ++f)
     for (int j = 0; j < 3; ++j)
       if (triangles[f][j] == p) first = triangles[f][(j + 1) % 3];
-  if (first == UINT32_MAX) return first;
-  uint32_t lowest = first;
-  for (uint32_t x = first, steps = 0; steps < vertices.size(); ++steps) {
-    const uint32_t e = find(p, x);
-    if (e == kNone) break;
-    x = thirdOf(e);
-    if (x == first) return lowest;
-    lowest = std::min(lowest, x);
-  }
-  lowest = UINT32_MAX;
-  for (const auto& tri : triangles)
-    for (int j = 0; j < 3; ++j)
-      if (tri[j] == p) lowest = std::min(lowest, tri[(j + 1) % 3]);
-  return lowest;
+  if (first == UINT32_MAX || !rotation(p, first, out)) return false;
+  size_t lowest = 0;
+  for (size_t i = 1; i < out->size(); ++i)
+    if (vertices[(*out)[i]] < vertices[(*out)[lowest]]) lowest = i;
+  std::rotate(out->begin(), out->begin() + static_cast<std::ptrdiff_t>(lowest), out->end());
+  return true;
 }
 
 bool StarLink::rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const {

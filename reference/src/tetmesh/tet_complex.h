@@ -54,6 +54,17 @@ struct Link {
   uint32_t localIndex(uint32_t vertex) const;  // vertices.size() when absent
   // The smallest link neighbour q of p with a triangle (p, q, ...).
   uint32_t lowestNeighbour(uint32_t p) const;
+  // As StarLink's (which numbers its vertices otherwise), for the coding
+  // templates: local numbers are ranks here.
+  bool rotationFromLowest(uint32_t p, std::vector<uint32_t>* out) const {
+    return rotation(p, lowestNeighbour(p), out);
+  }
+  uint32_t localOfRank(uint32_t r) const { return r; }
+  void boundaryVertices(std::vector<uint32_t>* out) const {
+    out->clear();
+    for (uint32_t p = 0; p < vertices.size(); ++p)
+      if (on_boundary[p]) out->push_back(p);
+  }
 
   // Scratch of buildLink(): per vertex number, its local index while its
   // stamp is the current one (no sort or search per corner).

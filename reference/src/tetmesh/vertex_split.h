@@ -23,7 +23,8 @@ struct SplitScratch {
   std::vector<uint32_t> rotation;
   std::vector<uint32_t> walk_position;  // per local vertex: 1 + index in the walk, 0 if not on it
   std::vector<uint8_t> triangle_side;   // per link triangle: 0 unknown, 1 vt's, 2 vs's
-  std::vector<uint32_t> queue;
+  std::vector<uint32_t> queue;          // splitRegion(): the region's triangles in the order found
+  std::vector<Diff3> difference;        // applyStarSplit(): per local vertex, its position - vt's
 };
 
 // spec 7.6.3: the tet slots of the link triangles on the sweep side of the

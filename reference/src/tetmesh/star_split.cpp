@@ -1,0 +1,116 @@
+// spec: 7.6.3 the region of a cut, 7.6.4 applying a split, for the decoder.
+#include "tetmesh/star_split.h"
+
+namespace mrsv {
+
+std::string applyStarSplit(TetComplex* mesh, const StarLink& link, uint32_t vt, const std::vector<uint32_t>& walk,
+                           bool closed, SplitScratch* s, std::vector<uint32_t>* moved,
+                           std::vector<uint32_t>* walk_global) {
+  const uint32_t vs = link.center;
+  const uint32_t k = static_cast<uint32_t>(walk.size());
+  const uint32_t edges = cutEdgeCount(k, closed);
+  const uint32_t m = static_cast<uint32_t>(link.vertices.size());
+  const uint32_t faces = static_cast<uint32_t>(link.triangles.size());
+  constexpr uint32_t kNo = StarLink::kNoTriangle;
+
+  // 7.6.3 as splitRegion() finds it (seeds in cut order, then breadth
+  // first, each triangle's edges in corner order), so that the moved tets
+  // come in its order; written out on raw arrays, as the generic flood's
+  // signed triangle numbers and per-step lookups cost twice as much.
+  s->walk_position.assign(m, 0);
+  uint32_t* position = s->walk_position.data();
+  for (uint32_t i = 0; i < k; ++i) position[walk[i]] = i + 1;
+  s->triangle_side.assign(faces, 0);  // 0 unknown, 1 vt's, 2 vs's
+  uint8_t* side = s->triangle_side.data();
+  s->queue.resize(faces);  // each triangle enters once, when its side turns 1
+  uint32_t* queue = s->queue.data();
+  uint32_t tail = 0;
+  for (uint32_t i = 0; i < edges; ++i) {
+    const uint32_t a = walk[i], b = walk[(i + 1) % k];
+    const uint32_t vt_side = link.triangleHolding(b, a), vs_side = link.triangleHolding(a, b);
+    if (vt_side == kNo || vs_side == kNo) return "the cut runs along the boundary of the link";
+    if (side[vs_side] == 1 || side[vt_side] == 2) return "the cut does not separate the link";
+    side[vs_side] = 2;
+    if (side[vt_side] == 0) {
+      side[vt_side] = 1;
+      queue[tail++] = vt_side;
+    }
+  }
+  // A step from a region triangle across its edge a -> b (not a cut edge)
+  // to the triangle holding b -> a; false when that is a block.
+  auto step = [&](uint32_t a, uint32_t b) {
+    const uint32_t pa = position[a], pb = position[b];
+    if (pa != 0 && pb != 0) {
+      const uint32_t d = pa > pb ? pa - pb : pb - pa;
+      if (d == 1 || (closed && d == k - 1)) return true;
+    }
+    const uint32_t g = link.triangleHolding(b, a);
+    if (g == kNo) return true;
+    if (side[g] == 2) return false;
+    if (side[g] == 0) {
+      side[g] = 1;
+      queue[tail++] = g;
+    }
+    return true;
+  };
+  for (uint32_t q = 0; q < tail; ++q) {
+    const auto tri = link.triangles[queue[q]];
+    if (!step(tri[0], tri[1]) || !step(tri[1], tri[2]) || !step(tri[2], tri[0]))
+      return "the cut does not separate the link";
+  }
+  moved->resize(tail);
+  for (uint32_t q = 0; q < tail; ++q) (*moved)[q] = link.triangle_tet[queue[q]];
+  walk_global->resize(k);
+  for (uint32_t i = 0; i < k; ++i) (*walk_global)[i] = link.vertices[walk[i]];
+
+  // 7.6.4 step 1: the moved tets in region order, then the new ones in cut order.
+  const Point3i at = mesh->positions[vt];
+  auto differenceOf = [&](uint32_t vertex) {
+    const Point3i& p = mesh->positions[vertex];
+    return Diff3{int64_t{p[0]} - at[0], int64_t{p[1]} - at[1], int64_t{p[2]} - at[2]};
+  };
+  s->difference.resize(m);
+  Diff3* d = s->difference.data();
+  for (uint32_t p = 0; p < m; ++p) d[p] = differenceOf(link.vertices[p]);
+  const bool below_2to20 = mesh->position_bits <= 20;
+  const uint32_t moved_count = static_cast<uint32_t>(moved->size());
+  for (uint32_t q = 0; q < moved_count; ++q) {
+    const auto& tri = link.triangles[s->queue[q]];
+    if (orientOfDifferences(d[tri[0]], d[tri[1]], d[tri[2]], below_2to20) <= 0)
+      return "tet " + std::to_string((*moved)[q]) + " would not be positive with vt in place of vs";
+  }
+  const Diff3 to_vs = differenceOf(vs);
+  for (uint32_t i = 0; i < edges; ++i)
+    if (orientOfDifferences(d[walk[i]], d[walk[(i + 1) % k]], to_vs, below_2to20) <= 0)
+      return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
+
+  // Step 2, as applySplit() does it.
+  std::vector<Tet>& tets = mesh->tets;
+  const uint32_t first_new = static_cast<uint32_t>(tets.size());
+  std::vector<uint32_t>& star_vs = mesh->incident[vs];
+  std::vector<uint32_t>& star_vt = mesh->incident[vt];
+  // vt's list is new: sized once for its moved and new tets and a few more,
+  // so that the tets later splits give it seldom move it again.
+  star_vt.reserve(moved_count + edges + 4);
+  star_vt.assign(moved->begin(), moved->end());
+  for (uint32_t t : *moved)
+    for (uint32_t& corner : tets[t])
+      if (corner == vs) corner = vt;
+  // vs keeps the tets of the triangles the region did not mark, in order.
+  uint32_t kept = 0;
+  for (uint32_t f = 0; f < star_vs.size(); ++f)
+    if (side[f] != 1) star_vs[kept++] = star_vs[f];
+  star_vs.resize(kept);
+  for (uint32_t i = 0; i < edges; ++i) {
+    const uint32_t a = (*walk_global)[i], b = (*walk_global)[(i + 1) % k];
+    const uint32_t slot = first_new + i;
+    tets.push_back(Tet{vt, a, b, vs});
+    star_vs.push_back(slot);
+    star_vt.push_back(slot);
+    mesh->incident[a].push_back(slot);
+    mesh->incident[b].push_back(slot);
+  }
+  return "";
+}
+
+}  // namespace mrsv
