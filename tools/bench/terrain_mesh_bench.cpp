@@ -202,12 +202,16 @@ int main(int argc, char** argv) {
       parseErrorBound(errors[k], &bound);
       InsertionLimits limits;
       limits.max_error = bound;
-      TerrainInserter single(field.size[0], field.size[1]);
-      const double t0 = now();
-      single.refine(field, 0, limits, &error);
-      const double ms = (now() - t0) * 1000;
+      // Best of up to three runs under 1 s, as terrain_peers.mjs times the peers.
       GridMesh ours;
-      single.mesh(&ours);
+      double ms = 1e30;
+      for (int run = 0; run < 3 && (run == 0 || ms < 1000); ++run) {
+        TerrainInserter single(field.size[0], field.size[1]);
+        const double t0 = now();
+        single.refine(field, 0, limits, &error);
+        ms = std::min(ms, (now() - t0) * 1000);
+        if (run == 0) single.mesh(&ours);
+      }
       bool ours_ok = false;
       const double ours_worst = worstError(field, ours, bound, &ours_ok);
       TerrainInserter progressive(field.size[0], field.size[1]);

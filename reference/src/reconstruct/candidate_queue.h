@@ -41,7 +41,8 @@ class CandidateQueue {
   void set(uint32_t cell, const Candidate& c) {
     grow(cell);
     cand_[cell] = c;
-    const Entry e{double(c.num) / double(c.den), cell};
+    const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample < kNoTie;
+    const Entry e{double(c.num) / double(c.den), cell, exact ? uint32_t(c.sample) : kNoTie};
     if (pos_[cell] == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);
@@ -70,10 +71,21 @@ class CandidateQueue {
   static constexpr uint32_t kArity = 4;
 
   // The error as a double beside the cell, so that most comparisons read the
-  // heap array alone.
+  // heap array alone. When num < 2^30 and den < 2^20 (most errors: small
+  // triangles, heights in whole units), the doubles of two such errors are
+  // in their exact order and equal only when the errors are: two distinct
+  // errors differ by at least 1 / (den den'), relatively by 1 / (num den')
+  // > 2^-50, while each quotient of exact doubles is rounded by at most
+  // 2^-53. Such an entry carries its sample as `tie`, so that a tie between
+  // two of them is also decided in the heap array; other near-ties read the
+  // exact candidates.
+  static constexpr uint32_t kNoTie = UINT32_MAX;
+  static constexpr __int128 kExactNum = __int128{1} << 30;
+  static constexpr int64_t kExactDen = int64_t{1} << 20;
   struct Entry {
     double key;
     uint32_t cell;
+    uint32_t tie;  // the sample, or kNoTie when not exact
   };
 
   void grow(uint32_t cell) {
@@ -85,6 +97,7 @@ class CandidateQueue {
   // Whether a comes before b. Doubles carry 53 bits: keys further apart than
   // 2^-40 relative are in the exact order; closer ones are compared exactly.
   bool before(const Entry& a, const Entry& b) const {
+    if (a.tie != kNoTie && b.tie != kNoTie) return a.key > b.key || (a.key == b.key && a.tie < b.tie);
     if (a.key > b.key * (1 + 0x1p-40)) return true;
     if (b.key > a.key * (1 + 0x1p-40)) return false;
     return worse(cand_[a.cell], cand_[b.cell]);

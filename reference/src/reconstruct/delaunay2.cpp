@@ -20,8 +20,11 @@ Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks)
 }
 
 bool Delaunay2::conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
+  // The ranks are read only for cocircular points, where the perturbation decides.
+  const int s = incircle(points_[a], points_[b], points_[c], points_[d]);
+  if (s != 0) return s > 0;
   const uint64_t rank[4] = {ranks_[a], ranks_[b], ranks_[c], ranks_[d]};
-  return inCircleConflict(points_[a], points_[b], points_[c], points_[d], rank);
+  return cocircularConflict(points_[a], points_[b], points_[c], points_[d], rank);
 }
 
 uint32_t Delaunay2::addTriangle() {

@@ -57,10 +57,9 @@ inline bool lexLess(Point2 p, Point2 q) { return p.x < q.x || (p.x == q.x && p.y
 // unless zero, in which case the next highest decides the same way. Two steps
 // always decide (the triangle is not flat and the points are distinct).
 // With ranks in lexicographic order this is the rule of CGAL's
-// Delaunay_triangulation_2.
-inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d, const uint64_t rank[4]) {
-  const int s = incircle(a, b, c, d);
-  if (s != 0) return s > 0;
+// Delaunay_triangulation_2. That is inCircleConflict below; cocircularConflict
+// is its cocircular case alone (incircle 0), for a caller that has the sign.
+inline bool cocircularConflict(Point2 a, Point2 b, Point2 c, Point2 d, const uint64_t rank[4]) {
   int order[4] = {0, 1, 2, 3};  // by decreasing rank
   for (int i = 1; i < 4; ++i)
     for (int j = i; j > 0 && rank[order[j - 1]] < rank[order[j]]; --j) std::swap(order[j - 1], order[j]);
@@ -73,6 +72,11 @@ inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d, const uint6
     if (o != 0) return o > 0;
   }
   return false;  // not reached for a proper triangle
+}
+
+inline bool inCircleConflict(Point2 a, Point2 b, Point2 c, Point2 d, const uint64_t rank[4]) {
+  const int s = incircle(a, b, c, d);
+  return s != 0 ? s > 0 : cocircularConflict(a, b, c, d, rank);
 }
 
 }  // namespace mrsv::reconstruct

@@ -22,7 +22,6 @@ using reconstruct::CandidateQueue;
 int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
-int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
 
 }  // namespace
 
@@ -71,13 +70,44 @@ struct TerrainInserter::State {
 
   // spec 8.5: a triangle's worst lattice sample, exactly.
   void scan(uint32_t t) {
-    if (narrow) scanWith<int64_t>(t);
-    else scanWith<__int128>(t);
+    if (step == 1) {
+      if (narrow) scanWith<int64_t, true>(t);
+      else scanWith<__int128, true>(t);
+    } else if (narrow) {
+      scanWith<int64_t, false>(t);
+    } else {
+      scanWith<__int128, false>(t);
+    }
   }
+
+  // One edge's limit on a row's x range. The edge's barycentric numerator
+  // w = ex x + ey y + e0 is >= 0 where x >= -floor(N / m) (ex > 0: a lower
+  // limit) or x <= floor(N / m) (ex < 0: an upper one), with m = |ex| and
+  // N = ey y + e0. floor(N / m) is carried from lattice row to lattice row as
+  // a quotient and remainder, so the rows after the first need no division.
+  struct RowLimit {
+    int64_t q, r, m;  // N = q m + r, 0 <= r < m
+    int64_t dq, dr;   // N's step from row to row, ey * step = dq m + dr, 0 <= dr < m
+    bool upper;
+    template <class E>
+    void start(const E& e, int64_t y, int64_t step) {  // e.ex != 0
+      upper = e.ex < 0;
+      m = upper ? -e.ex : e.ex;
+      const int64_t n = e.ey * y + e.e0;
+      q = floorDiv(n, m), r = n - q * m;
+      const int64_t d = e.ey * step;
+      dq = floorDiv(d, m), dr = d - dq * m;
+    }
+    void next() {
+      q += dq, r += dr;
+      if (r >= m) r -= m, ++q;
+    }
+  };
 
   // W holds |value - za| * den and the interpolant's numerator: int64_t when
   // the stage's value range allows (checked in refine()), else __int128.
-  template <class W>
+  // kUnit: the lattice step is 1 (the single stage and every last stage).
+  template <class W, bool kUnit>
   void scanWith(uint32_t t) {
     const auto& tv = dt.triangle(t);
     const VertexXYZ& va = vertex[tv[0]];
@@ -88,11 +118,12 @@ struct TerrainInserter::State {
     const int64_t den = orient2d(a, b, c);
     // Pick's theorem: a triangle of grid points with twice its area 1 holds
     // no grid point but its corners (on a lattice of step 1, every sample).
-    if (den == 1 && step == 1) {
+    if (kUnit && den == 1) {
       worst_error[t] = 0.0;
       queue.remove(t);
       return;
     }
+    const int64_t st = kUnit ? 1 : step;
     // Barycentric numerators as functions of the sample (x, y): w = ex * x + ey * y + e0.
     struct Edge {
       int64_t ex, ey, e0;
@@ -101,67 +132,105 @@ struct TerrainInserter::State {
     auto edge = [](Point2 u, Point2 v) {
       return Edge{int64_t{u.y} - v.y, int64_t{v.x} - u.x, int64_t{u.x} * v.y - int64_t{u.y} * v.x};
     };
-    const Edge ea = edge(b, c), eb = edge(c, a), ec = edge(a, b);
+    const Edge edges[3] = {edge(b, c), edge(c, a), edge(a, b)};
+    const Edge &eb = edges[1], &ec = edges[2];
     int64_t x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
     int64_t y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
     if (skip_border) {
       x0 = std::max<int64_t>(x0, 1), x1 = std::min<int64_t>(x1, int64_t{nx} - 2);
       y0 = std::max<int64_t>(y0, 1), y1 = std::min<int64_t>(y1, int64_t{ny} - 2);
     }
-    Candidate best;
-    best.den = den;
+    const int64_t first_y = kUnit ? y0 : (y0 + st - 1) & ~(st - 1);  // y0 >= 0
+    // The error numerator at (x, y) is (value - za) den - Q(x, y), with the
+    // interpolant's numerator Q = wb zb + wc zc linear: Q(x, y) = Q(x0, y) +
+    // qx (x - x0), and Q(x0, y) steps by a constant from lattice row to row.
+    // Every point of the bounding box has |wb|, |wc| <= 2 nx ny, so Q, its
+    // steps between box points and the error fit where refine() chose
+    // int64_t; a step is only taken as a constant when the box is at least
+    // a step wide (tall), so that it too is the difference of two box points.
+    const W qx = W(eb.ex) * zb + W(ec.ex) * zc;
+    const W qy = W(eb.ey) * zb + W(ec.ey) * zc;
+    const W dz = kUnit || st <= x1 - x0 ? qx * st : W(0);
+    const W dq_row = kUnit || st <= y1 - y0 ? qy * st : W(0);
+    W q_row = first_y <= y1 ? W(eb.at(x0, first_y)) * zb + W(ec.at(x0, first_y)) * zc : W(0);
     W best_num = 0;
+    uint64_t best_sample = 0;
     const int32_t* values = field->values.data();
     const int64_t last = int64_t{nx} - 1;
-    const bool last_apart = (last & (step - 1)) != 0;  // the last column is not a multiple of step
-    const int64_t first_x = (x0 + step - 1) & ~(step - 1);  // x0 >= 0
+    // The last column and row are lattice points even when not multiples of step.
+    const bool last_apart = !kUnit && (last & (st - 1)) != 0;
     // Samples come in increasing index order: on a tie the first stays.
     const auto consider = [&](int64_t row, int64_t x, W e) {
       if (e < 0) e = -e;
       if (e > best_num) {
         best_num = e;
-        best.sample = uint64_t(row + x);
+        best_sample = uint64_t(row + x);
       }
     };
-    // Narrow triangles (most, once the mesh is fine): every lattice point of
-    // the bounding box, tested by its three barycentric numerators. Wide
-    // ones: each row's range solved by division, then only the points inside.
-    const bool narrow_box = x1 - x0 <= 16 * step;
-    forLattice(y0, y1, ny, [&](int64_t y) {
-      const int64_t row = y * nx;
+    // The lattice samples of row y in [lo, hi], Q(x0, y) being qr.
+    const auto visitRow = [&](int64_t y, int64_t lo, int64_t hi, W qr) {
+      const int64_t row = y * int64_t{nx};
       const int32_t* v = values + row;
-      if (narrow_box) {
-        int64_t wa = ea.at(first_x, y), wb = eb.at(first_x, y), wc = ec.at(first_x, y);
-        const int64_t da = ea.ex * step, db = eb.ex * step, dc = ec.ex * step;
-        for (int64_t x = first_x; x <= x1; x += step, wa += da, wb += db, wc += dc)
-          if ((wa | wb | wc) >= 0) consider(row, x, W(v[x] - za) * den - (W(wb) * zb + W(wc) * zc));
-        if (last_apart && x0 <= last && last <= x1) {
-          const int64_t la = ea.at(last, y), lb = eb.at(last, y), lc = ec.at(last, y);
-          if ((la | lb | lc) >= 0) consider(row, last, W(v[last] - za) * den - (W(lb) * zb + W(lc) * zc));
-        }
-        return;
-      }
-      // The x range where all three barycentric numerators are >= 0.
-      int64_t lo = x0, hi = x1;
-      for (const Edge& e : {ea, eb, ec}) {
-        const int64_t r = -(e.ey * y + e.e0);  // need ex * x >= r
-        if (e.ex > 0) lo = std::max(lo, ceilDiv(r, e.ex));
-        else if (e.ex < 0) hi = std::min(hi, floorDiv(-r, -e.ex));
-        else if (r > 0) return;
-      }
-      if (lo > hi) return;
-      // The interpolant's numerator wb zb + wc zc steps by a constant along
-      // the row's multiples of step; the last column is on its own.
-      const int64_t first = (lo + step - 1) & ~(step - 1);
+      const int64_t first = kUnit ? lo : (lo + st - 1) & ~(st - 1);
       if (first <= hi) {
-        const W dz = W(eb.ex) * step * zb + W(ec.ex) * step * zc;
-        W interp = W(eb.at(first, y)) * zb + W(ec.at(first, y)) * zc;
-        for (int64_t x = first; x <= hi; x += step, interp += dz) consider(row, x, W(v[x] - za) * den - interp);
+        W q = qr + qx * (first - x0);
+        for (int64_t x = first; x <= hi; x += st, q += dz) consider(row, x, W(v[x] - za) * den - q);
       }
-      if (last_apart && lo <= last && last <= hi)
-        consider(row, last, W(v[last] - za) * den - (W(eb.at(last, y)) * zb + W(ec.at(last, y)) * zc));
-    });
+      if (last_apart && lo <= last && last <= hi) consider(row, last, W(v[last] - za) * den - (qr + qx * (last - x0)));
+    };
+    // The rows from the top vertex to the middle one (by y) lie between the
+    // two edges from the top, the rest between the long edge (top to bottom)
+    // and the short one from the middle: two limits per row, one lower and
+    // one upper (a row's run between two boundary points of the triangle
+    // satisfies the third edge). Edge i is opposite corner i.
+    int top = 0, mid = 1, bottom = 2;
+    const int64_t ys[3] = {a.y, b.y, c.y};
+    if (ys[mid] < ys[top]) std::swap(mid, top);
+    if (ys[bottom] < ys[mid]) std::swap(bottom, mid);
+    if (ys[mid] < ys[top]) std::swap(mid, top);
+    const int64_t last_row = y1;
+    RowLimit along, beside;  // the long edge, the current short edge
+    int64_t y = first_y;
+    const auto rows = [&](int64_t end) {
+      RowLimit& lower = along.upper ? beside : along;
+      RowLimit& upper = along.upper ? along : beside;
+      for (; y <= end; y += st) {
+        const int64_t lo = std::max(x0, -lower.q), hi = std::min(x1, upper.q);
+        if (lo <= hi) visitRow(y, lo, hi, q_row);
+        lower.next(), upper.next();
+        q_row += dq_row;
+      }
+    };
+    if (y <= last_row) {
+      along.start(edges[mid], y, st);
+      // Rows above the middle vertex's, or every row when the short edge
+      // from the middle is horizontal.
+      const int64_t split = ys[mid] == ys[bottom] ? last_row : std::min(last_row, ys[mid] - 1);
+      if (y <= split) {
+        beside.start(edges[bottom], y, st);
+        rows(split);
+      }
+      if (y <= last_row) {
+        beside.start(edges[top], y, st);
+        rows(last_row);
+      }
+    }
+    // The last row, when not a multiple of step, by division.
+    const int64_t last_y = int64_t{ny} - 1;
+    if (!kUnit && (last_y & (st - 1)) != 0 && y0 <= last_y && last_y <= y1) {
+      int64_t lo = x0, hi = x1;
+      for (const Edge& e : edges) {
+        if (e.ex == 0) continue;
+        const int64_t n = e.ey * last_y + e.e0;
+        if (e.ex > 0) lo = std::max(lo, -floorDiv(n, e.ex));
+        else hi = std::min(hi, floorDiv(n, -e.ex));
+      }
+      if (lo <= hi) visitRow(last_y, lo, hi, W(eb.at(x0, last_y)) * zb + W(ec.at(x0, last_y)) * zc);
+    }
+    Candidate best;
     best.num = best_num;
+    best.den = den;
+    best.sample = best_sample;
     const bool found = best_num > 0;
     worst_error[t] = found ? double(best.num) / double(best.den) : 0.0;
     if (found && (bound_num < 0 || best.num * bound_den > bound_num * best.den)) queue.set(t, best);
