@@ -219,11 +219,12 @@ py::tuple tetrahedralize(const py::object& array_like, const py::object& spacing
   const uint8_t* p = static_cast<const uint8_t*>(samples.data());
   std::vector<uint8_t> bytes(p, p + samples.nbytes());
   TetMesh mesh;
+  TetBuildReport report;  // the library fills it unconditionally
   std::string error;
   bool ok;
   {
     py::gil_scoped_release release;
-    ok = tetrahedralizeGrid(h, bytes, spacing.data(), GridCrop{}, &mesh, nullptr, &error);
+    ok = tetrahedralizeGrid(h, bytes, spacing.data(), GridCrop{}, &mesh, &report, &error);
   }
   if (!ok) throw py::value_error(error);
   return meshTuple(mesh);
