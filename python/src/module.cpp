@@ -10,4 +10,5 @@ PYBIND11_MODULE(_mrsv, m) {
   mrsv::python::registerCheck(m);
   mrsv::python::registerMesh(m);
   mrsv::python::registerTets(m);
+  mrsv::python::registerReconstruct(m);
 }
