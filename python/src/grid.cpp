@@ -219,17 +219,17 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
   // The options as 'mrsv encode' checks them (tools/mrsv/cmd_encode.cpp).
   if (coding != "wavelet" && coding != "stored") throw py::value_error("coding= must be 'wavelet' or 'stored'");
   WaveletEncodeOptions w;
-  int targets = 0;
-  if (max_error) w.max_error = checkedNumber(max_error, "max_error", 0, 524287), ++targets;
-  if (bits_per_sample) w.bits_per_sample = checkedNumber(bits_per_sample, "bits_per_sample", 1e-3, 64), ++targets;
-  if (psnr) w.psnr = checkedNumber(psnr, "psnr", 1, 400), ++targets;
-  if (step) w.step = checkedNumber(step, "step", 1e-12, 1e300), ++targets;
-  if (keep) w.keep_fraction = checkedNumber(keep, "keep", 1e-9, 1), ++targets;
-  if (lossless) w.max_error = 0, ++targets;
+  if (max_error) w.max_error = checkedNumber(max_error, "max_error", 0, 524287);
+  if (bits_per_sample) w.bits_per_sample = checkedNumber(bits_per_sample, "bits_per_sample", 1e-3, 64);
+  if (psnr) w.psnr = checkedNumber(psnr, "psnr", 1, 400);
+  if (step) w.step = checkedNumber(step, "step", 1e-12, 1e300);
+  if (keep) w.keep_fraction = checkedNumber(keep, "keep", 1e-9, 1);
+  if (lossless) w.max_error = 0;
+  const int targets = bool(max_error) + bool(bits_per_sample) + bool(psnr) + bool(step) + bool(keep) + lossless;
   if (targets > 1)
     throw py::value_error("give at most one of lossless, max_error, bits_per_sample, psnr, step, keep");
   if (targets == 0) w.max_error = 0;  // lossless by default, as the CLI
-  if (coding == "stored" && (targets > 0 || order || wavelet_name || progressive || !roi.is_none()))
+  if (coding == "stored" && ((targets > 0 && !lossless) || order || wavelet_name || progressive || !roi.is_none()))
     throw py::value_error("coding='stored' takes no rate, quality or wavelet option");
   if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
   w.max_levels = levels;
@@ -382,7 +382,8 @@ array: 1 to 3 dimensions, numpy C order (x,), (y, x) or (z, y, x): the last
   float32 or float64.
 path: the output file (written under a temporary name, then renamed).
 Rate or quality, at most one (default: lossless): lossless=True,
-  max_error=D, bits_per_sample=R, psnr=P, step=S, keep=F.
+  max_error=D, bits_per_sample=R, psnr=P, step=S, keep=F. Float samples
+  are coded lossily: give them bits_per_sample, psnr, step or keep.
 Other options as the CLI's: nodata, coding ('wavelet'|'stored'),
   wavelet ('cdf97'|'bspline'), order (1-4, B-splines), entropy
   ('adaptive'|'baseline'), levels (0-16), progressive, bound_route

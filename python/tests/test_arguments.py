@@ -36,6 +36,17 @@ def test_rate_options(tmp_path, st_helens):
     assert not path.exists()  # nothing written by a refused call
 
 
+def test_float_samples_need_a_rate_or_quality(tmp_path, st_helens):
+    with pytest.raises(ValueError, match="integer samples"):
+        mrsv.encode(st_helens.astype(np.float32), tmp_path / "x.mrsv")
+
+
+def test_stored_lossless(tmp_path, st_helens):
+    mrsv.encode(st_helens, tmp_path / "s.mrsv", coding="stored", lossless=True)
+    with pytest.raises(ValueError, match="stored"):
+        mrsv.encode(st_helens, tmp_path / "s.mrsv", coding="stored", psnr=40)
+
+
 def test_region_of_interest(tmp_path, st_helens):
     path = tmp_path / "roi.mrsv"
     mrsv.encode(st_helens, path, bits_per_sample=0.3, roi=("ellipsoid", (64, 64), (16, 16)))
