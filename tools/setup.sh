@@ -15,6 +15,7 @@ packages=(
   python3                                   # conformance runner and vector generator
   python3-vtk9 python3-meshio               # the real clients of our .vtu/.vtk files (tet_clients_test)
   python3-matplotlib                        # the section 7 pictures (tools/experiments, experiments_section7_quick)
+  python3-pybind11 python3-numpy python3-pytest  # the Python module (python/) and its tests
 )
 
 missing=()

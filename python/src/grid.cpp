@@ -1,0 +1,409 @@
+// mrsv.encode and mrsv.decode: numpy arrays to and from grid streams (spec 3-5).
+//
+// Axis order: a numpy array in C order with shape (z, y, x) (2-D: (y, x), 1-D:
+// (x,)) has the last axis varying fastest, which is the format's x-fastest
+// sample order, so the array's memory is the stream's sample order and no
+// transposition is ever made. Metadata that lists axes (spacing, origin) keeps
+// the file's x, y, z order.
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <optional>
+
+#include <pybind11/stl.h>
+
+#include "common.h"
+#include "mrsv/encode.h"
+#include "mrsv/file_io.h"
+#include "mrsv/grid.h"
+#include "mrsv/progressive_mesh.h"
+#include "mrsv/progressive_tet_mesh.h"
+
+namespace mrsv::python {
+namespace {
+
+// Little-endian numpy dtypes of the six sample types (spec 3.1): the stream's
+// byte order, right on any host.
+const char* dtypeOf(SampleType type) {
+  switch (type) {
+    case SampleType::kUint8: return "<u1";
+    case SampleType::kInt16: return "<i2";
+    case SampleType::kUint16: return "<u2";
+    case SampleType::kInt32: return "<i4";
+    case SampleType::kFloat32: return "<f4";
+    case SampleType::kFloat64: return "<f8";
+  }
+  return "<u1";
+}
+
+const char kTypes[] = "uint8, int16, uint16, int32, float32, float64";
+
+// The no-data value as the sample type's bit pattern (as 'mrsv encode --nodata').
+uint64_t nodataBits(const py::object& value, SampleType type) {
+  bool is_float = type == SampleType::kFloat32 || type == SampleType::kFloat64;
+  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+                                            py::hasattr(value, "__index__") || py::hasattr(value, "__float__")))
+    throw py::type_error("nodata= must be a number or None");
+  double v = value.cast<double>();
+  if (is_float) {
+    if (type == SampleType::kFloat64) {
+      uint64_t bits;
+      std::memcpy(&bits, &v, 8);
+      return bits;
+    }
+    float f = static_cast<float>(v);
+    if (std::isfinite(v) && !std::isfinite(f)) throw py::value_error("nodata= is out of range for float32");
+    uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    return bits;
+  }
+  if (!std::isfinite(v) || v != std::floor(v))
+    throw py::value_error(std::string("nodata= must be a whole number for ") + sampleTypeName(type) + " samples");
+  double lo = 0, hi = 0;
+  switch (type) {
+    case SampleType::kUint8: hi = 255; break;
+    case SampleType::kInt16: lo = -32768; hi = 32767; break;
+    case SampleType::kUint16: hi = 65535; break;
+    default: lo = std::numeric_limits<int32_t>::min(); hi = std::numeric_limits<int32_t>::max();
+  }
+  if (v < lo || v > hi)
+    throw py::value_error("nodata= " + std::to_string(static_cast<long long>(v)) + " is out of range for " +
+                          sampleTypeName(type));
+  uint64_t mask = (uint64_t{1} << (8 * sampleSize(type))) - 1;
+  return static_cast<uint64_t>(static_cast<int64_t>(v)) & mask;
+}
+
+py::object nodataValue(const GridHeader& h) {
+  if (!h.hasNodata()) return py::none();
+  uint64_t b = h.nodata_bits;
+  switch (h.sample_type) {
+    case SampleType::kUint8:
+    case SampleType::kUint16: return py::int_(b);
+    case SampleType::kInt16: return py::int_(static_cast<int16_t>(b));
+    case SampleType::kInt32: return py::int_(static_cast<int32_t>(b));
+    case SampleType::kFloat32: {
+      float f;
+      uint32_t u = static_cast<uint32_t>(b);
+      std::memcpy(&f, &u, 4);
+      return py::float_(f);
+    }
+    case SampleType::kFloat64: {
+      double d;
+      std::memcpy(&d, &b, 8);
+      return py::float_(d);
+    }
+  }
+  return py::none();
+}
+
+// A number-list of spec 2.6 (x, y, z order) from a sequence of `dims` numbers.
+std::string numberList(const py::object& values, const char* what, int dims) {
+  std::vector<double> v;
+  try {
+    v = values.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string(what) + "= must be a sequence of numbers (x, y, z order)");
+  }
+  if (static_cast<int>(v.size()) != dims)
+    throw py::value_error(std::string(what) + "= must give " + std::to_string(dims) +
+                          " numbers, one per axis in x, y, z order");
+  std::string text;
+  for (double x : v) {
+    if (!std::isfinite(x)) throw py::value_error(std::string(what) + "= must be finite");
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    text += (text.empty() ? "" : ",") + std::string(buf);
+  }
+  return text;
+}
+
+// A metadata number-list or number back as floats; None when absent or not one.
+py::object parsedNumbers(const Metadata& m, const char* key, bool list) {
+  const std::string* text = m.find(key);
+  if (!text) return py::none();
+  py::list out;
+  size_t start = 0;
+  while (start <= text->size()) {
+    size_t comma = list ? text->find(',', start) : std::string::npos;
+    if (comma == std::string::npos) comma = text->size();
+    std::string item = text->substr(start, comma - start);
+    char* end = nullptr;
+    double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0') return py::none();
+    out.append(v);
+    start = comma + 1;
+  }
+  return list ? py::object(py::tuple(out)) : out[0];
+}
+
+double checkedNumber(const std::optional<double>& v, const char* name, double lo, double hi) {
+  if (!(*v >= lo && *v <= hi))
+    throw py::value_error(std::string(name) + "= must be a number from " + py::str(py::float_(lo)).cast<std::string>() +
+                          " to " + py::str(py::float_(hi)).cast<std::string>());
+  return *v;
+}
+
+// region = ("box", lo, hi) or ("ellipsoid", centre, semi_axes), x, y, z order.
+RegionOfInterest parseRegion(const py::object& region, int dims) {
+  RegionOfInterest roi;
+  std::string shape;
+  std::vector<double> a, b;
+  try {
+    auto t = region.cast<std::tuple<std::string, std::vector<double>, std::vector<double>>>();
+    std::tie(shape, a, b) = t;
+  } catch (const py::cast_error&) {
+    throw py::type_error("roi= must be ('box', lo, hi) or ('ellipsoid', centre, semi_axes), points in x, y, z order");
+  }
+  if (shape != "box" && shape != "ellipsoid") throw py::value_error("roi= shape must be 'box' or 'ellipsoid'");
+  if (a.size() != b.size() || a.size() < 2 || a.size() > 3 || static_cast<int>(a.size()) > std::max(dims, 2))
+    throw py::value_error("roi= points must have 2 or 3 coordinates each (x, y[, z]), as many as the grid's axes");
+  roi.ellipsoid = shape == "ellipsoid";
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) throw py::value_error("roi= coordinates must be finite");
+    if (roi.ellipsoid) {
+      if (!(b[i] > 0)) throw py::value_error("roi= semi-axes must be positive");
+      roi.center[i] = a[i];
+      roi.half_size[i] = b[i];
+    } else {
+      double lo = std::min(a[i], b[i]), hi = std::max(a[i], b[i]);
+      roi.center[i] = 0.5 * (lo + hi);
+      roi.half_size[i] = 0.5 * (hi - lo);
+    }
+  }
+  return roi;
+}
+
+// The grid header and samples of an array; raises TypeError or ValueError.
+GridHeader headerOf(const py::object& array_like, py::array* samples) {
+  py::module_ np = py::module_::import("numpy");
+  py::array a = np.attr("asarray")(array_like);
+  SampleType type;
+  std::string name = py::str(a.dtype().attr("name"));
+  if (!parseSampleType(name, &type))
+    throw py::type_error("dtype " + name + " is not a sample type of the format; use one of " + kTypes +
+                         " (e.g. array.astype(numpy.int32))");
+  if (a.ndim() < 1 || a.ndim() > 3)
+    throw py::value_error("the array must have 1 to 3 dimensions ((x,), (y, x) or (z, y, x)), not " +
+                          std::to_string(a.ndim()));
+  GridHeader h;
+  h.num_dims = static_cast<uint8_t>(a.ndim());
+  h.sample_type = type;
+  uint32_t* sizes[3] = {&h.size_x, &h.size_y, &h.size_z};
+  for (int axis = 0; axis < a.ndim(); ++axis) {
+    py::ssize_t n = a.shape(a.ndim() - 1 - axis);  // the last numpy axis is x
+    if (n < 1 || n > static_cast<py::ssize_t>(UINT32_MAX))
+      throw py::value_error("every axis needs 1 to 2^32-1 samples, not " + std::to_string(n));
+    *sizes[axis] = static_cast<uint32_t>(n);
+  }
+  if (std::string problem = gridHeaderProblem(h); !problem.empty()) throw py::value_error(problem);
+  *samples = np.attr("ascontiguousarray")(a, py::dtype(dtypeOf(type)));
+  return h;
+}
+
+py::dict encode(const py::object& array, const py::object& path, const py::object& nodata,
+                const std::string& coding, const std::optional<std::string>& wavelet_name,
+                const std::optional<int>& order, const std::string& entropy, int levels, bool lossless,
+                const std::optional<double>& max_error, const std::optional<double>& bits_per_sample,
+                const std::optional<double>& psnr, const std::optional<double>& step,
+                const std::optional<double>& keep, bool progressive, const std::string& bound_route,
+                const std::string& prediction, const py::object& roi, double roi_falloff, double roi_gain,
+                const py::object& spacing, const py::object& origin, const py::object& metadata_entries) {
+  py::array samples;
+  GridHeader header = headerOf(array, &samples);
+  std::string out = outputPath(path);
+  if (!nodata.is_none()) {
+    header.nodata_bits = nodataBits(nodata, header.sample_type);
+    header.grid_flags |= kGridFlagHasNodata;
+  }
+  // The options as 'mrsv encode' checks them (tools/mrsv/cmd_encode.cpp).
+  if (coding != "wavelet" && coding != "stored") throw py::value_error("coding= must be 'wavelet' or 'stored'");
+  WaveletEncodeOptions w;
+  if (max_error) w.max_error = checkedNumber(max_error, "max_error", 0, 524287);
+  if (bits_per_sample) w.bits_per_sample = checkedNumber(bits_per_sample, "bits_per_sample", 1e-3, 64);
+  if (psnr) w.psnr = checkedNumber(psnr, "psnr", 1, 400);
+  if (step) w.step = checkedNumber(step, "step", 1e-12, 1e300);
+  if (keep) w.keep_fraction = checkedNumber(keep, "keep", 1e-9, 1);
+  if (lossless) w.max_error = 0;
+  const int targets = bool(max_error) + bool(bits_per_sample) + bool(psnr) + bool(step) + bool(keep) + lossless;
+  if (targets > 1)
+    throw py::value_error("give at most one of lossless, max_error, bits_per_sample, psnr, step, keep");
+  if (targets == 0) w.max_error = 0;  // lossless by default, as the CLI
+  if (coding == "stored" && ((targets > 0 && !lossless) || order || wavelet_name || progressive || !roi.is_none()))
+    throw py::value_error("coding='stored' takes no rate, quality or wavelet option");
+  if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
+  w.max_levels = levels;
+  if (entropy == "baseline") w.entropy_mode = kEntropyBaseline;
+  else if (entropy != "adaptive") throw py::value_error("entropy= must be 'adaptive' or 'baseline'");
+  if (prediction == "neighbour") w.prediction = WaveletEncodeOptions::Prediction::kNeighbour;
+  else if (prediction == "weighted") w.prediction = WaveletEncodeOptions::Prediction::kWeighted;
+  else if (prediction != "auto") throw py::value_error("prediction= must be 'auto', 'neighbour' or 'weighted'");
+  if (w.prediction == WaveletEncodeOptions::Prediction::kWeighted && w.entropy_mode == kEntropyBaseline)
+    throw py::value_error("prediction='weighted' needs entropy='adaptive'");
+  if (bound_route == "residual") w.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+  else if (bound_route == "predictive") w.bound_route = WaveletEncodeOptions::BoundRoute::kPredictive;
+  else if (bound_route != "auto") throw py::value_error("bound_route= must be 'auto', 'residual' or 'predictive'");
+  if (bound_route != "auto" && w.max_error < 0)
+    throw py::value_error("bound_route= goes with lossless or max_error");
+  if (w.bound_route == WaveletEncodeOptions::BoundRoute::kPredictive && progressive)
+    throw py::value_error("bound_route='predictive' is not progressive; drop one of them");
+  w.progressive = progressive;
+  if (!roi.is_none()) {
+    if (w.max_error >= 0)
+      throw py::value_error("roi= goes with step, bits_per_sample, psnr or keep (lossless and error-bounded "
+                            "coding are exact everywhere)");
+    w.roi = parseRegion(roi, header.num_dims);
+    w.has_roi = true;
+  }
+  w.roi.falloff = checkedNumber(roi_falloff, "roi_falloff", 0, 1e9);
+  w.roi_gain = checkedNumber(roi_gain, "roi_gain", 1, 1e6);
+  const std::string family = wavelet_name ? *wavelet_name : order ? "bspline" : "cdf97";
+  if (family == "cdf97") {
+    if (order) throw py::value_error("order= is for wavelet='bspline'");
+    w.order = kWaveletOrderCdf97;
+  } else if (family == "bspline") {
+    w.order = order ? *order : 2;
+    if (w.order < 1 || w.order > 4) throw py::value_error("order= must be 1 to 4 (Haar, linear, quadratic, cubic)");
+  } else {
+    throw py::value_error("wavelet= must be 'cdf97' or 'bspline'");
+  }
+  Metadata metadata;
+  if (!spacing.is_none()) metadata.set("spacing", numberList(spacing, "spacing", header.num_dims));
+  if (!origin.is_none()) metadata.set("origin", numberList(origin, "origin", header.num_dims));
+  addMetadata(metadata_entries, &metadata);
+
+  const uint8_t* p = static_cast<const uint8_t*>(samples.data());
+  std::vector<uint8_t> bytes(p, p + samples.nbytes());
+  std::vector<uint8_t> stream;
+  WaveletEncodeReport report;
+  Error e;
+  std::string io_error;
+  bool written = false;
+  {
+    py::gil_scoped_release release;
+    e = coding == "stored" ? encodeStoredGrid(header, bytes, metadata, &stream)
+                           : encodeWaveletGrid(header, bytes, metadata, w, &stream, &report);
+    if (e.ok()) written = writeFileAtomically(out, stream, &io_error);
+  }
+  if (!e.ok()) throw py::value_error(e.field + ": " + e.message);
+  if (!written) {
+    PyErr_SetString(PyExc_OSError, (out + ": " + io_error).c_str());
+    throw py::error_already_set();
+  }
+  py::dict r;
+  r["bytes"] = stream.size();
+  r["bits_per_sample"] = 8.0 * stream.size() / static_cast<double>(header.sampleCount());
+  if (coding == "wavelet") {
+    r["psnr"] = report.psnr;
+    r["max_abs_error"] = report.max_abs_error;
+    r["levels"] = report.levels;
+    r["kept_coefficients"] = report.kept_coefficients;
+    r["l2_error"] = report.l2_error;
+  } else {
+    r["psnr"] = std::numeric_limits<double>::infinity();
+    r["max_abs_error"] = 0.0;
+    r["levels"] = 0;
+  }
+  return r;
+}
+
+py::tuple decode(const py::object& source_object, int levels, const py::object& byte_limit) {
+  if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
+  Source source = loadSource(source_object);
+  DecodeOptions options;
+  options.reduce_levels = levels;
+  options.container.allow_partial_tail = applyByteLimit(byte_limit, &source);
+  if (isProgressiveMeshStream(source.data, source.size))
+    throw py::value_error("this is a progressive mesh stream (spec 6): open it with mrsv.ProgressiveMesh");
+  if (isProgressiveTetStream(source.data, source.size))
+    throw py::value_error("this is a progressive tet mesh stream (spec 7): open it with mrsv.ProgressiveTetMesh");
+  DecodedGrid grid;
+  Error e;
+  {
+    py::gil_scoped_release release;
+    e = decodeGrid(source.data, source.size, options, &grid);
+  }
+  if (!e.ok()) raiseStreamError(e);
+  if (!grid.has_samples)
+    throw py::value_error("the stream ends before its sample data (a prefix of " +
+                          std::to_string(grid.container.chunks.size()) + " chunks)");
+  const GridHeader& h = grid.header;
+  std::vector<py::ssize_t> shape;
+  for (int axis = h.num_dims - 1; axis >= 0; --axis) shape.push_back(grid.output_size[axis]);
+  py::array samples(py::dtype(dtypeOf(h.sample_type)), shape);
+  std::memcpy(samples.mutable_data(), grid.samples.data(), grid.samples.size());
+
+  py::dict info;
+  std::vector<py::ssize_t> full;
+  const uint32_t sizes[3] = {h.size_x, h.size_y, h.size_z};
+  for (int axis = h.num_dims - 1; axis >= 0; --axis) full.push_back(sizes[axis]);
+  info["shape"] = py::tuple(py::cast(full));
+  info["sample_type"] = sampleTypeName(h.sample_type);
+  info["coding"] = h.coding == GridCoding::kStored ? "stored" : "wavelet";
+  info["nodata"] = nodataValue(h);
+  if (h.coding == GridCoding::kWavelet) {
+    info["wavelet"] = grid.wavelet.order == kWaveletOrderCdf97 ? "cdf97" : "bspline";
+    info["order"] = grid.wavelet.order == kWaveletOrderCdf97 ? py::object(py::none()) : py::int_(grid.wavelet.order);
+    std::vector<int> per_axis(grid.wavelet.levels, grid.wavelet.levels + h.num_dims);
+    info["decomposition_levels"] = py::tuple(py::cast(per_axis));  // x, y, z order
+    info["bands_decoded"] = grid.bands_decoded;
+    info["bands_total"] = grid.bands_total;
+    info["residual_decoded"] = grid.residual_decoded;
+  }
+  info["levels"] = levels;
+  info["complete"] = grid.container.complete;
+  info["bytes"] = source.size;
+  info["bytes_used"] = grid.container.complete ? grid.container.end_chunk_offset + kChunkHeaderSize + kChunkCrcSize
+                       : grid.container.chunks.empty() ? kFileHeaderSize
+                                                       : grid.container.chunks.back().endOffset();
+  info["metadata"] = metadataDict(grid.metadata);
+  info["spacing"] = parsedNumbers(grid.metadata, "spacing", true);
+  info["origin"] = parsedNumbers(grid.metadata, "origin", true);
+  for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
+    info[key] = parsedNumbers(grid.metadata, key, false);
+  return py::make_tuple(samples, info);
+}
+
+}  // namespace
+
+void registerGrid(py::module_& m) {
+  m.def("encode", &encode, py::arg("array"), py::arg("path"), py::kw_only(), py::arg("nodata") = py::none(),
+        py::arg("coding") = "wavelet", py::arg("wavelet") = py::none(), py::arg("order") = py::none(),
+        py::arg("entropy") = "adaptive", py::arg("levels") = 16, py::arg("lossless") = false,
+        py::arg("max_error") = py::none(), py::arg("bits_per_sample") = py::none(), py::arg("psnr") = py::none(),
+        py::arg("step") = py::none(), py::arg("keep") = py::none(), py::arg("progressive") = false,
+        py::arg("bound_route") = "auto", py::arg("prediction") = "auto", py::arg("roi") = py::none(),
+        py::arg("roi_falloff") = 16.0, py::arg("roi_gain") = 8.0, py::arg("spacing") = py::none(),
+        py::arg("origin") = py::none(), py::arg("metadata") = py::none(),
+        R"doc(Encode a grid of samples into an MRSV file (as 'mrsv encode').
+
+array: 1 to 3 dimensions, numpy C order (x,), (y, x) or (z, y, x): the last
+  axis is x, the format's fastest axis. dtype uint8, int16, uint16, int32,
+  float32 or float64.
+path: the output file (written under a temporary name, then renamed).
+Rate or quality, at most one (default: lossless): lossless=True,
+  max_error=D, bits_per_sample=R, psnr=P, step=S, keep=F. Float samples
+  are coded lossily: give them bits_per_sample, psnr, step or keep.
+Other options as the CLI's: nodata, coding ('wavelet'|'stored'),
+  wavelet ('cdf97'|'bspline'), order (1-4, B-splines), entropy
+  ('adaptive'|'baseline'), levels (0-16), progressive, bound_route
+  ('auto'|'residual'|'predictive'), prediction ('auto'|'neighbour'|'weighted'),
+  roi (('box', lo, hi) or ('ellipsoid', centre, semi_axes), x, y, z order),
+  roi_falloff, roi_gain. spacing, origin: per axis in x, y, z order (the
+  meta chunk's order); metadata: a dict of str to str (spec 2.6).
+Returns a dict: bytes, bits_per_sample, psnr, max_abs_error, levels, ...)doc");
+  m.def("decode", &decode, py::arg("source"), py::kw_only(), py::arg("levels") = 0, py::arg("bytes") = py::none(),
+        R"doc(Decode an MRSV grid (as 'mrsv decode').
+
+source: a path or the stream's bytes.
+levels: reduced resolution, stop the synthesis this many levels above the finest.
+bytes: read only the first N bytes, as if the rest had not arrived.
+Returns (array, info): the samples in numpy C order (z, y, x) with the
+stream's dtype, and a dict (shape, sample_type, coding, nodata, wavelet,
+decomposition_levels, bands_decoded, bands_total, residual_decoded, levels,
+complete, bytes, bytes_used, metadata, spacing, origin (x, y, z order),
+error_bound, error_max_abs, error_psnr_db, error_rmse).
+Raises mrsv.Error when the stream breaks a rule.)doc");
+}
+
+}  // namespace mrsv::python
