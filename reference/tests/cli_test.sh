@@ -108,6 +108,14 @@ if [ "$(sed -n 2p "$work/cow580.off" | cut -d' ' -f2)" -le 580 ]; then ok; else 
 expect 0 "$mrsv" decode --quiet --fraction 1 "$work/cow.mrsv" "$work/cow.ply"
 expect 0 "$mrsv" compare --json "$cow" "$work/cow.ply"; stdout_has "hausdorff"
 expect 2 "$mrsv" decode --faces 5 --vertices 5 "$work/cow.mrsv" "$work/x.obj"; one_line_stderr
+# A coarse level decodes only the batches it needs, and is the same level as a
+# whole decode then stepped back gives (--fraction decodes everything).
+expect 0 "$mrsv" decode --canonical --faces 580 "$work/cow.mrsv" "$work/cow580a.canon"; stderr_has "the level needs no more"
+expect 0 "$mrsv" decode --quiet --canonical --fraction "$(python3 -c 'print(580.5 / 5804)')" "$work/cow.mrsv" "$work/cow580b.canon"
+if cmp -s "$work/cow580a.canon" "$work/cow580b.canon"; then ok; else bad "--faces 580 and the same level by --fraction differ"; fi
+expect 0 "$mrsv" decode --quiet --canonical --vertices 1000 "$work/cow.mrsv" "$work/cow1000.canon"
+expect 0 "$mrsv" decode --quiet --vertices 1000 "$work/cow.mrsv" "$work/cow1000.off"
+if [ "$(sed -n 2p "$work/cow1000.off" | cut -d' ' -f1)" -eq 1000 ]; then ok; else bad "--vertices 1000 did not give 1000 vertices"; fi
 # Cut inside a chunk (the 6th), not between two: a stream cut between chunks
 # is a valid prefix.
 cut=$(python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))["chunks"][5]; print(c["offset"] + c["length"] // 2)' "$work/stdout.json" 2>/dev/null)
@@ -147,6 +155,14 @@ expect 2 "$mrsv" tetrahedralize "$work/g.vtk" "$work/g.obj"; stderr_has "must en
 expect 2 "$mrsv" tetrahedralize "$work/g.vtk" "$work/g.vtk"; stderr_has "refusing to overwrite"
 expect 3 "$mrsv" tetrahedralize "$work/missing.vtu" "$work/x.vtu"; one_line_stderr
 expect 0 "$mrsv" tetrahedralize --quiet "$tet/bunny_5433v_34055tet.mesh" "$work/bunny.vtu"; stdout_has "5433 vertices, 34055 tets"
+# A PT stream: a coarse level decodes only the batches it needs, and is the level a
+# whole decode then stepped back gives (--fraction decodes everything).
+expect 0 "$mrsv" encode --quiet "$tet/hand_7234v_29998tet.mesh" "$work/hand.mrsv"
+expect 0 "$mrsv" decode --canonical --tets 3000 "$work/hand.mrsv" "$work/hand3000a.canon"; stderr_has "the level needs no more"
+expect 0 "$mrsv" decode --quiet --canonical --fraction "$(python3 -c 'print(3000.5 / 29998)')" "$work/hand.mrsv" "$work/hand3000b.canon"
+if cmp -s "$work/hand3000a.canon" "$work/hand3000b.canon"; then ok; else bad "PT --tets 3000 and the same level by --fraction differ"; fi
+expect 0 "$mrsv" decode --quiet --tets 0 "$work/hand.mrsv" "$work/hand0.vtu"
+expect 0 "$mrsv" decode --vertices 2000 "$work/hand.mrsv" "$work/hand2000.vtu"; stderr_has "2000 vertices"
 printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1\n1 1 1 2 0\n' >"$work/bad.mesh"
 expect 1 "$mrsv" tetrahedralize "$work/bad.mesh" "$work/x.vtu"; stderr_has "bad.mesh:8: tet 1: vertex index 2 is out of range"; one_line_stderr
 if [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed tetrahedralize left an output"; fi

@@ -81,6 +81,17 @@ int fail(const char* command, const std::string& message, int exit_code) {
   return exit_code;
 }
 
+DecodeOptions levelLimits(const Args& args, const char* cells_option, uint64_t number, const DecodeOptions& options) {
+  DecodeOptions limited = options;
+  if (args.has(cells_option)) {
+    limited.stop_beyond_cells = number;
+    if (number == 0) limited.stop_at_vertices = 1;  // the base mesh has more than 0 cells
+  } else if (args.has("vertices")) {
+    limited.stop_at_vertices = number == 0 ? 1 : number;
+  }
+  return limited;
+}
+
 bool parseUint64(const std::string& text, uint64_t* out) {
   if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos)
     return false;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mrsv/grid.h"
 #include "mrsv/metadata.h"
 #include "mrsv/status.h"
 
@@ -50,6 +51,13 @@ int fail(const char* command, const std::string& message, int exit_code);
 bool parseUint64(const std::string& text, uint64_t* out);
 // A finite number written whole (strtod syntax), e.g. "0.5", "1e-3".
 bool parseDouble(const std::string& text, double* out);
+
+// `options` with the stop of a progressive mesh decode at the level asked for
+// (DecodeOptions::stop_*): --<cells_option> N decodes up to the first batch past
+// N triangles or tets, --vertices N up to N vertices, 0 of either the base mesh
+// alone; --fraction needs the finest count and decodes everything. `number` is
+// the option's parsed value.
+DecodeOptions levelLimits(const Args& args, const char* cells_option, uint64_t number, const DecodeOptions& options);
 
 // `s` as a JSON string literal, quotes included.
 std::string jsonString(const std::string& s);

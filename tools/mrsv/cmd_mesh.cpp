@@ -205,9 +205,15 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
                 kExitUsage);
   int chosen = args.has("faces") + args.has("vertices") + args.has("fraction");
   if (chosen > 1) return fail(cmd, "give at most one of --faces, --vertices and --fraction", kExitUsage);
+  uint64_t number = 0;
+  if (args.has("vertices") && !parseUint64(args.value("vertices"), &number))
+    return fail(cmd, "--vertices must be a whole number", kExitUsage);
+  if (args.has("faces") && !parseUint64(args.value("faces"), &number))
+    return fail(cmd, "--faces must be a whole number", kExitUsage);
+  const DecodeOptions limited = levelLimits(args, "faces", number, options);
   DecodedMesh decoded;
   auto start = std::chrono::steady_clock::now();
-  if (Error e = decodeProgressiveMesh(bytes.data(), bytes.size(), options, &decoded); !e.ok())
+  if (Error e = decodeProgressiveMesh(bytes.data(), bytes.size(), limited, &decoded); !e.ok())
     return reportError(cmd, in, e);
   auto done = std::chrono::steady_clock::now();
   if (!decoded.has_mesh) {
@@ -221,16 +227,12 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
   ProgressiveMesh& pm = decoded.mesh;
   const uint32_t finest = pm.splitsDecoded();
   uint32_t level = finest;
-  uint64_t number = 0;
   if (args.has("vertices")) {
-    if (!parseUint64(args.value("vertices"), &number)) return fail(cmd, "--vertices must be a whole number", kExitUsage);
     uint64_t base = pm.header().base_vertex_count;
     level = number <= base ? 0 : static_cast<uint32_t>(std::min<uint64_t>(number - base, finest));
   } else if (args.has("faces") || args.has("fraction")) {
-    uint64_t target = 0;
-    if (args.has("faces")) {
-      if (!parseUint64(args.value("faces"), &target)) return fail(cmd, "--faces must be a whole number", kExitUsage);
-    } else {
+    uint64_t target = number;
+    if (!args.has("faces")) {
       double f = 0;
       if (!parseDouble(args.value("fraction"), &f) || f < 0 || f > 1)
         return fail(cmd, "--fraction must be a number from 0 to 1", kExitUsage);
@@ -249,9 +251,12 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
   if (!writeFileAtomically(out, output, &error)) return fail(cmd, out + ": " + error, kExitIo);
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "mrsv decode: %s: level %u of %u: %u vertices, %u triangles (decoded %u splits in %.1f ms)\n",
-                 out.c_str(), level, finest, pm.vertexCount(), pm.triangleCount(), finest,
+                 out.c_str(), level, decoded.header.splitCount(), pm.vertexCount(), pm.triangleCount(), finest,
                  std::chrono::duration<double, std::milli>(done - start).count());
-    if (!decoded.container.complete)
+    if (decoded.stopped_early)
+      std::fprintf(stderr, "mrsv decode: %s: decoded %u of %u batches (the level needs no more)\n", in.c_str(),
+                   decoded.batches_decoded, decoded.header.batch_count);
+    else if (!decoded.container.complete)
       std::fprintf(stderr, "mrsv decode: %s: note: stream is a prefix (no MEND); decoded %u of %u batches\n",
                    in.c_str(), decoded.batches_decoded, decoded.header.batch_count);
   }

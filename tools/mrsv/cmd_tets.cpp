@@ -201,24 +201,26 @@ int runTetDecode(const Args& args, const std::string& in, const std::string& out
     return fail(cmd, in + ": a PT stream takes --tets, --vertices or --fraction", kExitUsage);
   if (args.has("tets") + args.has("vertices") + args.has("fraction") > 1)
     return fail(cmd, "give at most one of --tets, --vertices and --fraction", kExitUsage);
+  uint64_t number = 0;
+  if (args.has("vertices") && !parseUint64(args.value("vertices"), &number))
+    return fail(cmd, "--vertices must be a whole number", kExitUsage);
+  if (args.has("tets") && !parseUint64(args.value("tets"), &number))
+    return fail(cmd, "--tets must be a whole number", kExitUsage);
+  const DecodeOptions limited = levelLimits(args, "tets", number, options);
   DecodedTetMesh decoded;
   auto start = std::chrono::steady_clock::now();
-  if (Error e = decodeProgressiveTetMesh(bytes.data(), bytes.size(), options, &decoded); !e.ok())
+  if (Error e = decodeProgressiveTetMesh(bytes.data(), bytes.size(), limited, &decoded); !e.ok())
     return reportError(cmd, in, e);
   auto done = std::chrono::steady_clock::now();
   ProgressiveTetMesh& pt = decoded.mesh;
   const uint32_t finest = pt.splitsDecoded();
   uint32_t level = finest;
-  uint64_t number = 0;
   if (args.has("vertices")) {
-    if (!parseUint64(args.value("vertices"), &number)) return fail(cmd, "--vertices must be a whole number", kExitUsage);
     const uint64_t base = pt.header().base_vertex_count;
     level = number <= base ? 0 : static_cast<uint32_t>(std::min<uint64_t>(number - base, finest));
   } else if (args.has("tets") || args.has("fraction")) {
-    uint64_t target = 0;
-    if (args.has("tets")) {
-      if (!parseUint64(args.value("tets"), &target)) return fail(cmd, "--tets must be a whole number", kExitUsage);
-    } else {
+    uint64_t target = number;
+    if (!args.has("tets")) {
       double f = 0;
       if (!parseDouble(args.value("fraction"), &f) || f < 0 || f > 1)
         return fail(cmd, "--fraction must be a number from 0 to 1", kExitUsage);
@@ -240,9 +242,12 @@ int runTetDecode(const Args& args, const std::string& in, const std::string& out
     if (!writeFileAtomically(f.path, f.bytes, &error)) return fail(cmd, f.path + ": " + error, kExitIo);
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "mrsv decode: %s: level %u of %u: %u vertices, %u tets (decoded %u splits in %.1f ms)\n",
-                 out.c_str(), level, finest, pt.vertexCount(), pt.tetCount(), finest,
+                 out.c_str(), level, decoded.header.splitCount(), pt.vertexCount(), pt.tetCount(), finest,
                  std::chrono::duration<double, std::milli>(done - start).count());
-    if (!decoded.container.complete)
+    if (decoded.stopped_early)
+      std::fprintf(stderr, "mrsv decode: %s: decoded %u of %u batches (the level needs no more)\n", in.c_str(),
+                   decoded.batches_decoded, decoded.header.batch_count);
+    else if (!decoded.container.complete)
       std::fprintf(stderr, "mrsv decode: %s: note: stream is a prefix (no MEND); decoded %u of %u batches\n",
                    in.c_str(), decoded.batches_decoded, decoded.header.batch_count);
   }

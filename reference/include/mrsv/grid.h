@@ -107,7 +107,20 @@ struct DecodeOptions {
   // sample type, like any sample) instead of the no-data value: the surface the
   // mesh reconstructors (spec 8.1) read. Not a conformance output.
   bool void_values = false;
+  // Progressive meshes (PM, PT): stop after the first batch of vertex splits
+  // (or the base mesh) that leaves more than `stop_beyond_cells` triangles or
+  // tets, or at least `stop_at_vertices` vertices, as if the stream ended
+  // there (a prefix, 2.5.1): a reader after a coarse level decodes only the
+  // batches it needs, and no chunk after the stop is checked. 0: no limit.
+  uint64_t stop_beyond_cells = 0;
+  uint64_t stop_at_vertices = 0;
 };
+
+// Whether a progressive mesh decode stops at these counts (DecodeOptions).
+inline bool stopsAt(const DecodeOptions& o, uint64_t cells, uint64_t vertices) {
+  return (o.stop_beyond_cells != 0 && cells > o.stop_beyond_cells) ||
+         (o.stop_at_vertices != 0 && vertices >= o.stop_at_vertices);
+}
 
 // What a file, or a prefix of one, decodes to.
 struct DecodedGrid {

@@ -87,6 +87,7 @@ struct DecodedMesh {
   PmHeader header;
   uint32_t batches_decoded = 0;  // complete PSPL chunks among the bytes given
   bool has_mesh = false;         // PBAS was read
+  bool stopped_early = false;    // DecodeOptions' stop ended it before the bytes did
   ProgressiveMesh mesh;          // at its finest decoded level
 };
 

@@ -90,6 +90,7 @@ struct DecodedTetMesh {
   PtHeader header;
   uint32_t batches_decoded = 0;  // complete TSPL chunks among the bytes given
   bool has_mesh = false;         // TBAS was read
+  bool stopped_early = false;    // DecodeOptions' stop ended it before the bytes did
   ProgressiveTetMesh mesh;       // at its finest decoded level
 };
 

@@ -40,7 +40,7 @@ uint64_t splitsToReserve(const Container& c, const PmHeader& h) {
   return std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_bytes);
 }
 
-Error decodeChunks(DecodedMesh* out) {
+Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
   const Container& c = out->container;
   ProgressiveMesh::Impl& s = out->mesh.state();
   s.header = out->header;
@@ -69,6 +69,10 @@ Error decodeChunks(DecodedMesh* out) {
       if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
       s.reserveForSplits(splitsToReserve(c, h));
       out->has_mesh = true;
+      if (stopsAt(options, out->mesh.triangleCount(), out->mesh.vertexCount())) {
+        out->stopped_early = true;
+        return {};
+      }
     } else if (chunk.chunk_type == kChunkSplits) {
       // spec 6.7 batch(): split_count u32, then the coded splits.
       if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "PSPL", "PSPL before PBAS"};
@@ -103,6 +107,10 @@ Error decodeChunks(DecodedMesh* out) {
       }
       if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "PSPL"); !e.ok()) return e;
       ++out->batches_decoded;
+      if (stopsAt(options, out->mesh.triangleCount(), out->mesh.vertexCount())) {
+        out->stopped_early = true;
+        return {};
+      }
     } else if (chunk.chunk_type.critical()) {
       return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
                    chunk.chunk_type.str() + " in a progressive mesh stream"};
@@ -145,7 +153,7 @@ Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOption
     return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR",
                  "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
   try {
-    return decodeChunks(out);
+    return decodeChunks(options, out);
   } catch (const std::bad_alloc&) {
     return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR", "out of memory"};
   }

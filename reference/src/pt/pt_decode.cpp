@@ -57,7 +57,7 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   return problem;
 }
 
-Error decodeChunks(DecodedTetMesh* out) {
+Error decodeChunks(const DecodeOptions& options, DecodedTetMesh* out) {
   const Container& c = out->container;
   ProgressiveTetMesh::Impl& s = out->mesh.state();
   s.header = out->header;
@@ -83,6 +83,10 @@ Error decodeChunks(DecodedTetMesh* out) {
       problem = s.startFromBase();
       if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "TBAS", "the base mesh: " + problem};
       out->has_mesh = true;
+      if (stopsAt(options, out->mesh.tetCount(), out->mesh.vertexCount())) {
+        out->stopped_early = true;
+        return {};
+      }
     } else if (chunk.chunk_type == kChunkTetSplits) {
       // spec 7.7 batch(): split_count u32, then the coded flags and splits.
       if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "TSPL", "TSPL before TBAS"};
@@ -119,6 +123,10 @@ Error decodeChunks(DecodedTetMesh* out) {
       }
       if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "TSPL"); !e.ok()) return e;
       ++out->batches_decoded;
+      if (stopsAt(options, out->mesh.tetCount(), out->mesh.vertexCount())) {
+        out->stopped_early = true;
+        return {};
+      }
     } else if (chunk.chunk_type.critical()) {
       return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
                    chunk.chunk_type.str() + " in a progressive tet mesh stream"};
@@ -160,7 +168,7 @@ Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOpt
     return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR",
                  "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
   try {
-    return decodeChunks(out);
+    return decodeChunks(options, out);
   } catch (const std::bad_alloc&) {
     return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR", "out of memory"};
   }
