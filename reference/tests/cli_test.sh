@@ -88,6 +88,29 @@ expect 3 "$mrsv" encode --dims 128,128 --type int16 "$crop" "$work/no/dir/x.mrsv
 : >"$work/empty.raw"
 expect 1 "$mrsv" encode --dims 1 --type uint8 "$work/empty.raw" "$work/x.mrsv"; stderr_has "has 0 bytes"
 
+# Grid files with a header: a small .hgt, .pgm and .nrrd are read; malformed
+# ones give one line naming the file, the line, offset or field, and the rule.
+printf '\001\007\200\000\021\021\001\002\000\000\377\377\000\001\000\002\000\003' >"$work/N46W122.hgt"
+expect 0 "$mrsv" encode --quiet "$work/N46W122.hgt" "$work/h.mrsv"
+expect 0 "$mrsv" info "$work/h.mrsv"; stdout_has "nodata -32768"; stdout_has "crs=EPSG:4326"
+printf 'P2\n# plain\n3 2\n4095\n0 1 2\n4095 77 3\n' >"$work/p2.pgm"
+expect 0 "$mrsv" encode --quiet "$work/p2.pgm" "$work/p2.mrsv"
+expect 0 "$mrsv" decode --quiet "$work/p2.mrsv" "$work/p2.nrrd"
+expect 0 "$mrsv" encode --quiet "$work/p2.nrrd" "$work/p2b.mrsv"
+if cmp -s "$work/p2.mrsv" "$work/p2b.mrsv"; then ok; else bad "PGM and its NRRD copy encode differently"; fi
+head -c 17 "$work/N46W122.hgt" >"$work/odd.hgt"
+expect 1 "$mrsv" encode --quiet "$work/odd.hgt" "$work/x.mrsv"; stderr_has "odd.hgt: file size 17 bytes is not a square"; one_line_stderr
+printf 'P5 2 1 100\n\005\310' >"$work/bad.pgm"
+expect 1 "$mrsv" encode --quiet "$work/bad.pgm" "$work/x.mrsv"; stderr_has "bad.pgm: offset 12: sample 200 is above maxval 100"; one_line_stderr
+printf 'NRRD0004\ntype: short\ndimension: 2\nsizes: 2 2\nendian: big\nencoding: gzip\n\n12345678' >"$work/gz.nrrd"
+expect 1 "$mrsv" encode --quiet "$work/gz.nrrd" "$work/x.mrsv"; stderr_has "gz.nrrd: line 6: field 'encoding' 'gzip' is not supported"; one_line_stderr
+printf 'NRRD0004\ntype: short\ndimension: 2\nsizes: 2 2\n\n12345678' >"$work/noend.nrrd"
+expect 1 "$mrsv" encode --quiet "$work/noend.nrrd" "$work/x.mrsv"; stderr_has "noend.nrrd: line 5: the header has no 'endian' field"; one_line_stderr
+printf 'NRRD0004\ntype: uchar\ndimension: 2\nsizes: 2 2\nspacings: 1 x\n\n1234' >"$work/sp.nrrd"
+expect 1 "$mrsv" encode --quiet "$work/sp.nrrd" "$work/x.mrsv"; stderr_has "sp.nrrd: line 5: field 'spacings'"; one_line_stderr
+expect 1 "$mrsv" tetrahedralize "$work/sp.nrrd" "$work/x.vtu"; stderr_has "sp.nrrd: line 5"; one_line_stderr
+if [ ! -e "$work/x.mrsv" ] && [ ! -e "$work/x.vtu" ]; then ok; else bad "a malformed grid file left an output"; fi
+
 # The input is never overwritten.
 cp "$work/a.mrsv" "$work/keep.mrsv"
 expect 2 "$mrsv" decode "$work/keep.mrsv" "$work/keep.mrsv"; stderr_has "refusing"

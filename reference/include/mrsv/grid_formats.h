@@ -1,5 +1,5 @@
 // Grid file formats read and written by the tools (never by the decoder):
-// headerless raw, NRRD (attached header, raw encoding), binary PGM (P5) and
+// headerless raw, NRRD (attached header, raw encoding), PGM (P5 or P2) and
 // SRTM .hgt. The format is chosen by the file name's extension.
 #pragma once
 
@@ -30,8 +30,13 @@ struct GridInput {
 };
 
 // Reads a grid file; on failure returns false with one line in `error`
-// naming the file and the problem.
+// naming the file, where (line, offset or field) and the rule broken.
 bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in, std::string* error);
+
+// The same on bytes already in memory (for the fuzz target and tests):
+// `name` stands for the file in errors, `format` replaces its extension.
+bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& raw,
+                   std::vector<uint8_t> bytes, GridInput* in, std::string* error);
 
 // The bytes of a grid file for `path`'s format: `size` gives the sizes of
 // `samples` (smaller than the header's at reduced resolution). Taken by value:

@@ -1,15 +1,15 @@
 // Grid file formats of the tools: headerless raw, NRRD (attached, raw
-// encoding), binary PGM (P5, 8 or 16 bit) and SRTM .hgt.
+// encoding), PGM (P5 binary or P2 plain, 8 or 16 bit) and SRTM .hgt.
 #include "mrsv/grid_formats.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 #include <utility>
 
 #include "mrsv/file_io.h"
+#include "mrsv/metadata.h"
 #include "mrsv/raw_grid.h"
 
 namespace mrsv {
@@ -66,24 +66,58 @@ const char* nrrdTypeName(SampleType t) {
   return "?";
 }
 
-// "(1,0,0) (0,1,0)" or "1 1 2" → "1,1,2" for the meta chunk; empty if unusable.
-std::string numberList(const std::string& text) {
+// A header value as shown in an error: control bytes (a binary file read as
+// a header) would break the one-line message, and a long value hides the rest.
+std::string shown(const std::string& s) {
   std::string out;
+  for (char c : s.substr(0, 40))
+    out += (c >= 0x20 && c < 0x7F) ? c : '?';
+  return s.size() > 40 ? out + "..." : out;
+}
+
+// "(1,0,0) (0,1,0)" or "1 1 2" → the numbers in order; NRRD writes vectors in
+// parentheses, with or without spaces after the commas.
+std::vector<std::string> numberTokens(const std::string& text) {
+  std::vector<std::string> out;
   std::string token;
-  std::istringstream in(text);
-  while (in >> token) {
-    token.erase(std::remove_if(token.begin(), token.end(),
-                               [](char c) { return c == '(' || c == ')'; }),
-                token.end());
-    if (token.empty() || token == "none" || token == "nan") return {};
-    out += (out.empty() ? "" : ",") + token;
+  for (char c : text + " ") {
+    if (c == '(' || c == ')' || c == ',' || c == ' ' || c == '\t') {
+      if (!token.empty()) out.push_back(token);
+      token.clear();
+    } else {
+      token += c;
+    }
   }
   return out;
 }
 
+// A spacing or origin list for the meta chunk ("1,1,2"): empty when NRRD says
+// the value is unknown (nan); `problem` is set when it is not `count` numbers.
+std::string metaNumberList(const std::string& key, const std::string& text, size_t count,
+                           std::string* problem) {
+  problem->clear();
+  std::vector<std::string> tokens = numberTokens(text);
+  std::string joined;
+  for (const std::string& t : tokens) {
+    if (lower(t) == "nan" || lower(t) == "none") return {};
+    joined += (joined.empty() ? "" : ",") + t;
+  }
+  if (tokens.size() != count) {
+    *problem = "has " + std::to_string(tokens.size()) + " numbers, not one per axis (" +
+               std::to_string(count) + ")";
+  } else if (!metadataEntryProblem(key, joined).empty()) {
+    *problem = "'" + shown(text) + "' is not a list of decimal numbers";
+  }
+  return joined;
+}
+
+// NRRD (teem's format, versions NRRD0001 to NRRD0005) with the data attached
+// after the header's blank line. Only what changes the samples must be
+// understood; descriptive fields (kinds, units, labels, ...) are skipped.
 bool readNrrd(const std::string& path, const std::vector<uint8_t>& bytes, GridInput* in,
               std::string* error) {
   size_t pos = 0;
+  int line_number = 0;
   auto line = [&](std::string* out) {
     if (pos >= bytes.size()) return false;
     size_t end = pos;
@@ -91,64 +125,104 @@ bool readNrrd(const std::string& path, const std::vector<uint8_t>& bytes, GridIn
     *out = std::string(reinterpret_cast<const char*>(bytes.data() + pos), end - pos);
     if (!out->empty() && out->back() == '\r') out->pop_back();
     pos = end + 1;
+    ++line_number;
     return true;
   };
+  auto fail = [&](int at, const std::string& problem) {
+    *error = path + ": line " + std::to_string(at) + ": " + problem;
+    return false;
+  };
   std::string text;
-  if (!line(&text) || text.compare(0, 4, "NRRD") != 0) {
-    *error = path + ": not an NRRD file (no NRRD magic line)";
+  if (!line(&text) || text.size() != 8 || text.compare(0, 7, "NRRD000") != 0 || text[7] < '1' ||
+      text[7] > '5') {
+    *error = path + ": line 1: not an NRRD file (the first line must be NRRD0001 to NRRD0005)";
     return false;
   }
-  std::string type, encoding = "raw", endian = "little", sizes, spacings, origin;
-  int dimension = 0;
-  while (line(&text) && !text.empty()) {
+  struct Field {
+    std::string value;
+    int line = 0;
+  };
+  Field type, encoding, endian, dimension, sizes, spacings, origin;
+  bool ended = false;
+  while (line(&text)) {
+    if (text.empty()) {
+      ended = true;
+      break;
+    }
     if (text[0] == '#') continue;
     size_t colon = text.find(':');
-    if (colon == std::string::npos) continue;
+    if (colon == std::string::npos)
+      return fail(line_number, "'" + shown(text) + "' is not a comment or a 'field: value' line");
+    if (colon + 1 < text.size() && text[colon + 1] == '=') continue;  // key:=value pairs
     std::string key = lower(trim(text.substr(0, colon)));
-    std::string value = trim(text.substr(colon + 1));
-    if (!value.empty() && value[0] == '=') continue;  // key:=value pairs
-    if (key == "type") type = lower(value);
-    else if (key == "dimension") dimension = std::atoi(value.c_str());
-    else if (key == "sizes") sizes = value;
-    else if (key == "encoding") encoding = lower(value);
-    else if (key == "endian") endian = lower(value);
-    else if (key == "spacings") spacings = value;
-    else if (key == "space origin") origin = value;
-    else if (key == "data file" || key == "datafile") {
-      *error = path + ": detached NRRD headers are not supported; attach the data (unu save)";
-      return false;
-    }
+    Field field{trim(text.substr(colon + 1)), line_number};
+    if (key == "type") type = field;
+    else if (key == "encoding") encoding = field;
+    else if (key == "endian") endian = field;
+    else if (key == "dimension") dimension = field;
+    else if (key == "sizes") sizes = field;
+    else if (key == "spacings") spacings = field;
+    else if (key == "space origin") origin = field;
+    else if (key == "data file" || key == "datafile")
+      return fail(line_number, "field 'data file': detached data is not supported; attach it (unu save)");
+    else if ((key == "line skip" || key == "lineskip" || key == "byte skip" || key == "byteskip") &&
+             field.value != "0")
+      return fail(line_number, "field '" + key + "' " + shown(field.value) +
+                                   " is not supported (only 0: the data follows the header)");
   }
-  if (!nrrdType(type, &in->header.sample_type)) {
-    *error = path + ": NRRD type '" + type + "' is not one of uint8, int16, uint16, int32, float, double";
-    return false;
-  }
-  if (encoding != "raw") {
-    *error = path + ": NRRD encoding '" + encoding + "' is not supported (only raw)";
-    return false;
-  }
-  if (dimension < 1 || dimension > 3) {
-    *error = path + ": NRRD dimension " + std::to_string(dimension) + " (MRSV grids have 1 to 3)";
-    return false;
-  }
-  std::string dims = numberList(sizes);
-  if (std::string problem = parseDims(dims, &in->header); !problem.empty() ||
-                                                          in->header.num_dims != dimension) {
-    *error = path + ": NRRD sizes '" + sizes + "' do not match dimension " + std::to_string(dimension);
-    return false;
-  }
+  if (!ended)
+    return fail(line_number, "the header does not end with a blank line before the data");
+  for (const auto& [name, field] : {std::pair<const char*, const Field*>{"type", &type},
+                                    {"dimension", &dimension}, {"sizes", &sizes}})
+    if (field->line == 0) return fail(line_number, std::string("the header has no '") + name + "' field");
+  if (!nrrdType(lower(type.value), &in->header.sample_type))
+    return fail(type.line, "field 'type' '" + shown(type.value) +
+                               "' is not one of uint8, int16, uint16, int32, float, double");
+  std::string enc = encoding.line ? lower(encoding.value) : "raw";
+  if (enc != "raw")
+    return fail(encoding.line, "field 'encoding' '" + shown(encoding.value) +
+                                   "' is not supported (only raw; unu save -e raw converts)");
+  const size_t sample_size = sampleSize(in->header.sample_type);
+  std::string end = lower(endian.value);
+  if (endian.line == 0 && sample_size > 1)
+    return fail(line_number, "the header has no 'endian' field, which " +
+                                 std::string(nrrdTypeName(in->header.sample_type)) + " data needs");
+  if (endian.line != 0 && end != "little" && end != "big")
+    return fail(endian.line, "field 'endian' '" + shown(endian.value) + "' is not little or big");
+  if (dimension.value.size() != 1 || dimension.value[0] < '1' || dimension.value[0] > '3')
+    return fail(dimension.line, "field 'dimension' '" + shown(dimension.value) +
+                                    "' is not 1, 2 or 3 (MRSV grids have 1 to 3 axes)");
+  const size_t dims = static_cast<size_t>(dimension.value[0] - '0');
+  std::vector<std::string> size_tokens = numberTokens(sizes.value);
+  std::string joined;
+  for (const std::string& t : size_tokens) joined += (joined.empty() ? "" : ",") + t;
+  if (size_tokens.size() != dims)
+    return fail(sizes.line, "field 'sizes' has " + std::to_string(size_tokens.size()) +
+                                " numbers, not 'dimension' (" + std::to_string(dims) + ")");
+  if (std::string problem = parseDims(joined, &in->header); !problem.empty())
+    return fail(sizes.line, "field 'sizes': " + shown(problem));
+  std::string problem;
+  std::string spacing = metaNumberList("spacing", spacings.value, dims, &problem);
+  if (spacings.line && !problem.empty()) return fail(spacings.line, "field 'spacings' " + problem);
+  std::string place = metaNumberList("origin", origin.value, dims, &problem);
+  if (origin.line && !problem.empty()) return fail(origin.line, "field 'space origin' " + problem);
   in->samples.assign(bytes.begin() + static_cast<long>(std::min(pos, bytes.size())), bytes.end());
-  if (endian == "big") swapSampleBytes(&in->samples, sampleSize(in->header.sample_type));
-  if (std::string s = numberList(spacings); !s.empty()) in->metadata.set("spacing", s);
-  if (std::string s = numberList(origin); !s.empty()) in->metadata.set("origin", s);
+  if (end == "big") swapSampleBytes(&in->samples, sample_size);
+  if (spacings.line && !spacing.empty()) in->metadata.set("spacing", spacing);
+  if (origin.line && !place.empty()) in->metadata.set("origin", place);
   return true;
 }
 
+// Netpbm PGM: P5 (binary; 16-bit samples most significant byte first) or P2
+// (plain: decimal samples). Samples are kept as stored, not scaled to maxval.
 bool readPgm(const std::string& path, const std::vector<uint8_t>& bytes, GridInput* in,
              std::string* error) {
-  // P5 header: magic, width, height, maxval, separated by white space and comments.
+  auto fail = [&](size_t at, const std::string& problem) {
+    *error = path + ": offset " + std::to_string(at) + ": " + problem;
+    return false;
+  };
   size_t pos = 2;
-  auto number = [&](long* out) {
+  auto skipSpace = [&] {
     while (pos < bytes.size()) {
       if (bytes[pos] == '#') {
         while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
@@ -158,30 +232,75 @@ bool readPgm(const std::string& path, const std::vector<uint8_t>& bytes, GridInp
         break;
       }
     }
-    long v = 0;
-    size_t start = pos;
-    while (pos < bytes.size() && std::isdigit(bytes[pos]) && pos - start < 9) v = v * 10 + (bytes[pos++] - '0');
-    *out = v;
-    return pos > start;
   };
+  // Skips white space and '#' comments, then reads a decimal number.
+  size_t start = 0;  // where the last number read starts, for errors about its value
+  auto number = [&](const char* what, long* out) {
+    skipSpace();
+    start = pos;
+    long v = 0;
+    while (pos < bytes.size() && std::isdigit(bytes[pos])) {
+      if (pos - start == 9) return fail(start, std::string(what) + " has more than 9 digits");
+      v = v * 10 + (bytes[pos++] - '0');
+    }
+    if (pos == start)
+      return fail(start, std::string("expected the ") + what + " (a decimal number)" +
+                             (pos < bytes.size() ? "" : " but the file ends"));
+    if (pos < bytes.size() && !std::isspace(bytes[pos]) && bytes[pos] != '#')
+      return fail(pos, std::string(what) + " is not followed by white space");
+    *out = v;
+    return true;
+  };
+  const bool plain = bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] == '2';
+  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && !plain))
+    return fail(0, "not a PGM file (it must start with P5 or P2)");
+  if (pos < bytes.size() && !std::isspace(bytes[pos]) && bytes[pos] != '#')
+    return fail(pos, "the magic number is not followed by white space");
   long w, h, maxval;
-  if (bytes.size() < 2 || bytes[0] != 'P' || bytes[1] != '5' || !number(&w) || !number(&h) ||
-      !number(&maxval) || pos >= bytes.size() || !std::isspace(bytes[pos])) {
-    *error = path + ": not a binary PGM (P5) file";
-    return false;
-  }
-  ++pos;
-  if (w < 1 || h < 1 || maxval < 1 || maxval > 65535) {
-    *error = path + ": PGM width, height or maxval out of range";
-    return false;
-  }
+  if (!number("width", &w) || !number("height", &h) || !number("maxval", &maxval)) return false;
+  if (w < 1 || h < 1) return fail(pos, "width and height must be at least 1");
+  if (maxval < 1 || maxval > 65535) return fail(pos, "maxval must be 1 to 65535");
+  if (pos >= bytes.size() && !plain) return fail(pos, "the file ends after maxval");
   in->header.num_dims = 2;
   in->header.size_x = static_cast<uint32_t>(w);
   in->header.size_y = static_cast<uint32_t>(h);
   in->header.sample_type = maxval < 256 ? SampleType::kUint8 : SampleType::kUint16;
+  if (std::string problem = gridHeaderProblem(in->header); !problem.empty())
+    return fail(pos, problem);
+  const size_t sample_size = maxval < 256 ? 1 : 2;
+  const uint64_t count = uint64_t{in->header.size_x} * in->header.size_y;
+  if (plain) {
+    // Each value needs at least two bytes with its separator: a size check
+    // first keeps a lying header from making a huge buffer.
+    if (count > bytes.size()) return fail(pos, "the file is too short for " + std::to_string(w) + "x" +
+                                                   std::to_string(h) + " samples");
+    in->samples.reserve(count * sample_size);
+    for (uint64_t i = 0; i < count; ++i) {
+      long v;
+      if (!number("next sample", &v)) return false;
+      if (v > maxval)
+        return fail(start, "sample " + std::to_string(v) + " is above maxval " + std::to_string(maxval));
+      in->samples.push_back(static_cast<uint8_t>(v));
+      if (sample_size == 2) in->samples.push_back(static_cast<uint8_t>(v >> 8));
+    }
+    skipSpace();
+    if (pos < bytes.size())
+      return fail(pos, "data after the " + std::to_string(w) + "x" + std::to_string(h) + " samples");
+    return true;
+  }
+  // Binary samples start after exactly one white-space byte (a comment there
+  // would be read as samples by other readers).
+  if (!std::isspace(bytes[pos])) return fail(pos, "maxval is not followed by one white-space byte");
+  ++pos;
   in->samples.assign(bytes.begin() + static_cast<long>(pos), bytes.end());
-  // Netpbm stores 16-bit samples most significant byte first.
-  if (in->header.sample_type == SampleType::kUint16) swapSampleBytes(&in->samples, 2);
+  if (sample_size == 2) swapSampleBytes(&in->samples, 2);
+  // Netpbm: no sample may exceed maxval (checked over the samples the size
+  // check will accept, so a long file gets the size error, not this one).
+  for (size_t i = 0; i + sample_size <= in->samples.size() && i < count * sample_size; i += sample_size) {
+    long v = in->samples[i] | (sample_size == 2 ? in->samples[i + 1] << 8 : 0);
+    if (v > maxval)
+      return fail(pos + i, "sample " + std::to_string(v) + " is above maxval " + std::to_string(maxval));
+  }
   return true;
 }
 
@@ -191,8 +310,8 @@ bool readHgt(const std::string& path, const std::vector<uint8_t>& bytes, GridInp
   size_t n = bytes.size() / 2;
   uint32_t side = static_cast<uint32_t>(std::llround(std::sqrt(static_cast<double>(n))));
   if (bytes.size() % 2 != 0 || uint64_t{side} * side != n || side < 2) {
-    *error = path + ": .hgt size " + std::to_string(bytes.size()) +
-             " bytes is not a square of int16 samples (1201x1201 or 3601x3601)";
+    *error = path + ": file size " + std::to_string(bytes.size()) +
+             " bytes is not a square of at least 2x2 int16 samples (SRTM tiles are 1201x1201 or 3601x3601)";
     return false;
   }
   in->header.num_dims = 2;
@@ -224,15 +343,20 @@ bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in,
     *error = path + ": " + *error;
     return false;
   }
-  GridFormat format = gridFormatOf(path);
+  return readGridBytes(path, gridFormatOf(path), raw, std::move(bytes), in, error);
+}
+
+bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& raw,
+                   std::vector<uint8_t> bytes, GridInput* in, std::string* error) {
+  *in = GridInput{};
   bool ok;
   switch (format) {
-    case GridFormat::kNrrd: ok = readNrrd(path, bytes, in, error); break;
-    case GridFormat::kPgm: ok = readPgm(path, bytes, in, error); break;
-    case GridFormat::kHgt: ok = readHgt(path, bytes, in, error); break;
+    case GridFormat::kNrrd: ok = readNrrd(name, bytes, in, error); break;
+    case GridFormat::kPgm: ok = readPgm(name, bytes, in, error); break;
+    case GridFormat::kHgt: ok = readHgt(name, bytes, in, error); break;
     default:
       if (!raw.has_layout) {
-        *error = path + ": headerless raw input needs --dims and --type";
+        *error = name + ": headerless raw input needs --dims and --type";
         return false;
       }
       in->header = raw.header;
@@ -242,12 +366,12 @@ bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in,
   }
   if (!ok) return false;
   if (std::string problem = gridHeaderProblem(in->header); !problem.empty()) {
-    *error = path + ": " + problem;
+    *error = name + ": " + problem;
     return false;
   }
   uint64_t expected = in->header.sampleCount() * sampleSize(in->header.sample_type);
   if (in->samples.size() != expected) {
-    *error = path + ": file has " + std::to_string(in->samples.size()) + " bytes of samples but " +
+    *error = name + ": file has " + std::to_string(in->samples.size()) + " bytes of samples but " +
              std::to_string(in->header.size_x) + "x" + std::to_string(in->header.size_y) + "x" +
              std::to_string(in->header.size_z) + " " + sampleTypeName(in->header.sample_type) +
              " needs " + std::to_string(expected);
