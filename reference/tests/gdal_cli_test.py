@@ -7,9 +7,13 @@ gdallocationinfo then compare the round trip with the original: samples
 (exactly when lossless), geotransform, EPSG code, no-data value, data type.
 Bad rasters must give one-line errors naming the file and leave no output.
 
-Usage: gdal_cli_test.py PATH/TO/mrsv SHARED_DATA_DIR ON|OFF
-(the last argument is the build's MRSV_GDAL; OFF exits 77, which ctest
-reports as skipped).
+With the directory of the driver plugin gdal_MRSV.so, the same tools also
+open .mrsv files through it (GDAL_DRIVER_PATH): samples, georeferencing and
+overviews (the wavelet levels, as mrsv decode --levels K gives them).
+
+Usage: gdal_cli_test.py PATH/TO/mrsv SHARED_DATA_DIR ON|OFF [PLUGIN_DIR]
+(ON|OFF is the build's MRSV_GDAL; OFF exits 77, which ctest reports as
+skipped).
 """
 import array
 import json
@@ -21,6 +25,7 @@ import sys
 import tempfile
 
 MRSV, DATA, GDAL = sys.argv[1], sys.argv[2], sys.argv[3].upper()
+PLUGINS = sys.argv[4] if len(sys.argv) > 4 else None
 if GDAL not in ("ON", "1", "TRUE", "YES"):
     print("skipped: this build has MRSV_GDAL off")
     sys.exit(77)
@@ -34,16 +39,16 @@ def check(condition, what):
         print("FAIL:", what)
 
 
-def run(*cmd, expect=0):
-    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
+def run(*cmd, expect=0, env=None):
+    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, env=env)
     if r.returncode != expect:
         failures.append(f"exit {r.returncode} (want {expect}): {' '.join(map(str, cmd))}: {r.stderr.strip()[:300]}")
         print("FAIL:", failures[-1])
     return r
 
 
-def info(path, *config):
-    return json.loads(run("gdalinfo", "-json", *config, path).stdout or "{}")
+def info(path, *config, env=None):
+    return json.loads(run("gdalinfo", "-json", *config, path, env=env).stdout or "{}")
 
 
 def epsg(gdal_json):
@@ -202,6 +207,38 @@ with tempfile.TemporaryDirectory() as work:
     run(MRSV, "encode", "--quiet", "--dims", "32,32,16", "--type", "uint8", volume, volume + ".mrsv")
     one_line_error(run(MRSV, "decode", "--quiet", volume + ".mrsv", volume + ".tif", expect=2), volume + ".tif", "3-D")
     check(not os.path.exists(volume + ".tif"), "a refused GeoTIFF output was written")
+
+    # The driver plugin: gdalinfo and gdal_translate read .mrsv themselves.
+    if PLUGINS:
+        env = dict(os.environ, GDAL_DRIVER_PATH=PLUGINS)
+        stream = rb + ".mrsv"  # Rainier, lossless, progressive: 7 levels
+        d, full = info(stream, env=env), info(rainier)
+        check(d.get("driverShortName") == "MRSV", f"driver {d.get('driverShortName')}")
+        check(d.get("size") == full["size"] and close(d.get("geoTransform", []), full["geoTransform"]),
+              "plugin: size or geotransform differs")
+        check(epsg(d) == 4326, "plugin: EPSG")
+        band = (d.get("bands") or [{}])[0]
+        check(band.get("type") == "Int16" and band.get("noDataValue") == -32768, f"plugin band {band}")
+        sizes = [o["size"] for o in band.get("overviews", [])]
+        check(sizes[:3] == [[601, 601], [301, 301], [151, 151]] and len(sizes) == 7, f"plugin overviews {sizes}")
+        out = os.path.join(work, "plugin.tif")
+        run("gdal_translate", "-q", stream, out, env=env)
+        check(samples(out, work, "h") == samples(rainier, work, "h"), "plugin: gdal_translate samples differ")
+        check(close(info(out)["geoTransform"], full["geoTransform"]), "plugin: gdal_translate geotransform")
+        # Overview 2 (index 1) is the stream decoded 2 levels up. (Its pixel
+        # size is GDAL's: the full extent over its size, not 4 pixels; D73.)
+        run("gdal_translate", "-q", "-ovr", "1", stream, out + "_ovr1.tif", env=env)
+        check(samples(out + "_ovr1.tif", work, "h") == samples(rb + "_l2.tif", work, "h"), "plugin: overview samples")
+        # Not rasters: a 3-D grid, a damaged stream.
+        r = run("gdalinfo", volume + ".mrsv", expect=1, env=env)
+        check("3-D" in r.stderr, f"plugin: 3-D grid: {r.stderr.strip()[:200]}")
+        damaged = os.path.join(work, "damaged.mrsv")
+        with open(stream, "rb") as f, open(damaged, "wb") as g:
+            b = bytearray(f.read())
+            b[60] ^= 0xFF
+            g.write(b)
+        r = run("gdalinfo", damaged, expect=1, env=env)
+        check("damaged.mrsv" in r.stderr and "E1" in r.stderr, f"plugin: damaged stream: {r.stderr.strip()[:200]}")
 
 print(f"gdal_cli_test: {len(failures)} failures")
 sys.exit(1 if failures else 0)

@@ -4,6 +4,8 @@
 // pixel sizes (negative y for north-up rasters), `crs` EPSG:n or one-line WKT2.
 #include "io/gdal_grid.h"
 
+#include "io/gdal_georef.h"
+
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_vsi.h>
@@ -67,18 +69,6 @@ bool sampleTypeOf(GDALDataType type, SampleType* out) {
   }
 }
 
-GDALDataType gdalTypeOf(SampleType type) {
-  switch (type) {
-    case SampleType::kUint8: return GDT_Byte;
-    case SampleType::kInt16: return GDT_Int16;
-    case SampleType::kUint16: return GDT_UInt16;
-    case SampleType::kInt32: return GDT_Int32;
-    case SampleType::kFloat32: return GDT_Float32;
-    case SampleType::kFloat64: return GDT_Float64;
-  }
-  return GDT_Unknown;
-}
-
 // The band's no-data value as the sample type's bit pattern. A value the type
 // cannot hold (e.g. -9999 on a uint8 band) marks no sample, so it is dropped.
 bool nodataBits(double value, SampleType type, uint64_t* bits) {
@@ -105,27 +95,6 @@ bool nodataBits(double value, SampleType type, uint64_t* bits) {
   const uint64_t mask = (uint64_t{1} << (8 * sampleSize(type))) - 1;
   *bits = static_cast<uint64_t>(static_cast<int64_t>(value)) & mask;
   return true;
-}
-
-double nodataValue(uint64_t bits, SampleType type) {
-  switch (type) {
-    case SampleType::kUint8: return static_cast<double>(bits & 0xff);
-    case SampleType::kInt16: return static_cast<int16_t>(bits & 0xffff);
-    case SampleType::kUint16: return static_cast<double>(bits & 0xffff);
-    case SampleType::kInt32: return static_cast<int32_t>(bits & 0xffffffffu);
-    case SampleType::kFloat32: {
-      uint32_t b = static_cast<uint32_t>(bits);
-      float f;
-      std::memcpy(&f, &b, 4);
-      return f;
-    }
-    case SampleType::kFloat64: {
-      double d;
-      std::memcpy(&d, &bits, 8);
-      return d;
-    }
-  }
-  return 0;
 }
 
 // crs: the EPSG code when GDAL identifies one, else WKT2 on one line.
@@ -278,39 +247,19 @@ bool encodeGeoTiff(const std::string& path, const GridHeader& header, const Meta
   }
   bool ok = true;
   GDALRasterBandH band = GDALGetRasterBand(ds, 1);
-  std::vector<double> origin, spacing;
-  const std::string* o = metadata.find("origin");
-  const std::string* s = metadata.find("spacing");
-  if (o && s && parseMetaNumberList(*o, &origin) && parseMetaNumberList(*s, &spacing) &&
-      origin.size() >= 2 && spacing.size() >= 2 && spacing[0] != 0 && spacing[1] != 0) {
-    // The inverse of readGeoreferencing: the corner is half a pixel before the sample.
-    double gt[6] = {origin[0] - 0.5 * spacing[0], spacing[0], 0, origin[1] - 0.5 * spacing[1], 0, spacing[1]};
-    ok = GDALSetGeoTransform(ds, gt) == CE_None;
-  }
+  double gt[6];
+  if (geoTransformFromMetadata(metadata, gt)) ok = GDALSetGeoTransform(ds, gt) == CE_None;
   const std::string* point = metadata.find("area_or_point");
   if (ok && point && *point == "point")
     ok = GDALSetMetadataItem(ds, GDALMD_AREA_OR_POINT, GDALMD_AOP_POINT, nullptr) == CE_None;
   if (const std::string* crs = metadata.find("crs"); ok && crs) {
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-    // Only the two forms D73 writes, EPSG:n and WKT: the value comes from the
-    // stream, and GDAL's general parser would also open files and URLs.
-    OGRErr e = OGRERR_FAILURE;
-    if (crs->compare(0, 5, "EPSG:") == 0 && crs->size() > 5 &&
-        crs->find_first_not_of("0123456789", 5) == std::string::npos) {
-      e = OSRImportFromEPSG(srs, std::atoi(crs->c_str() + 5));
-    } else {
-      std::string wkt = *crs;
-      char* text = wkt.data();
-      e = OSRImportFromWkt(srs, &text);
-    }
-    if (e == OGRERR_NONE) {
-      OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+    if (OGRSpatialReferenceH srs = spatialRefFromCrs(*crs)) {
       ok = GDALSetSpatialRef(ds, srs) == CE_None;
+      OSRDestroySpatialReference(srs);
     } else {
       std::fprintf(stderr, "mrsv: %s: note: crs '%.60s' is neither EPSG:n nor WKT that GDAL reads; "
                            "the GeoTIFF has no CRS\n", path.c_str(), crs->c_str());
     }
-    OSRDestroySpatialReference(srs);
   }
   if (ok && header.hasNodata())
     ok = GDALSetRasterNoDataValue(band, nodataValue(header.nodata_bits, type)) == CE_None;
