@@ -23,7 +23,7 @@ void roundTrip(const char* name, mrsv::GridFormat format, const mrsv::GridInput&
   for (bool big : {false, true}) {
     std::vector<uint8_t> file;
     std::string error;
-    if (!mrsv::encodeGridOutput(name, in.header, size, in.samples, big, &file, &error)) std::abort();
+    if (!mrsv::encodeGridOutput(name, in.header, in.metadata, size, in.samples, big, &file, &error)) std::abort();
     mrsv::GridInput back;
     if (!mrsv::readGridBytes("fuzz", format, mrsv::RawLayout{}, std::move(file), &back, &error)) std::abort();
     if (back.header.num_dims != in.header.num_dims || back.header.size_x != in.header.size_x ||

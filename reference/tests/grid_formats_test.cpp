@@ -63,7 +63,7 @@ TEST(GridFormatsNrrd, OurWriterRoundTripsRealVolumesAndTerrainsInBothByteOrders)
     for (bool big : {false, true}) {
       std::vector<uint8_t> file;
       std::string error;
-      ASSERT_TRUE(encodeGridOutput("out.nrrd", grid.header, size, grid.samples, big, &file, &error)) << error;
+      ASSERT_TRUE(encodeGridOutput("out.nrrd", grid.header, Metadata{}, size, grid.samples, big, &file, &error)) << error;
       GridInput in;
       ASSERT_TRUE(read(GridFormat::kNrrd, file, &in, &error)) << name << ": " << error;
       EXPECT_EQ(in.header.num_dims, grid.header.num_dims);
@@ -241,7 +241,7 @@ TEST(GridFormatsPgm, OurWriterRoundTripsRealSlices) {
     const uint32_t size[3] = {slice.size_x, slice.size_y, 1};
     std::vector<uint8_t> file;
     std::string error;
-    ASSERT_TRUE(encodeGridOutput("slice.pgm", slice, size, samples, false, &file, &error)) << error;
+    ASSERT_TRUE(encodeGridOutput("slice.pgm", slice, Metadata{}, size, samples, false, &file, &error)) << error;
     GridInput in;
     ASSERT_TRUE(read(GridFormat::kPgm, file, &in, &error)) << name << ": " << error;
     EXPECT_EQ(in.header.num_dims, 2);

@@ -33,8 +33,10 @@ const char kHelp[] =
     "(default: every split decoded; --canonical writes spec 7.8's canonical output).\n"
     "\n"
     "Decode an MRSV grid. OUT is chosen by its extension: .nrrd (with a header),\n"
-    "  .pgm (2-D uint8 or uint16), or else a headerless raw file of the stream's sample\n"
-    "  type (x fastest, then y, then z).\n"
+    "  .pgm (2-D uint8 or uint16), .tif/.tiff (a GeoTIFF of a 1-D or 2-D grid, through\n"
+    "  GDAL, georeferenced from the meta chunk's origin, spacing and crs, with its no-data\n"
+    "  value; at --levels K the spacing is the coarser one), or else a headerless raw file\n"
+    "  of the stream's sample type (x fastest, then y, then z).\n"
     "\n"
     "Options:\n"
     "  --endian little|big   byte order of OUT (default little)\n"
@@ -112,7 +114,9 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    if (!encodeGridOutput(out, grid.header, grid.output_size, std::move(grid.samples),
+    const Metadata metadata =
+        reducedResolutionMetadata(grid.metadata, grid.header, grid.wavelet.levels, options.reduce_levels);
+    if (!encodeGridOutput(out, grid.header, metadata, grid.output_size, std::move(grid.samples),
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);
   }

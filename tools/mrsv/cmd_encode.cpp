@@ -25,14 +25,20 @@ const char kHelp[] =
     "\n"
     "Encode a grid of samples (a terrain, an image, a volume) into an MRSV file.\n"
     "IN is chosen by its extension: .nrrd (attached header, raw encoding), .pgm (P5 or\n"
-    "P2, 8 or 16 bit), .hgt (SRTM: square big-endian int16, voids -32768), or else a\n"
-    "headerless raw file (x fastest, then y, then z) described by --dims and --type.\n"
+    "P2, 8 or 16 bit), .hgt (SRTM: square big-endian int16, voids -32768), .tif/.tiff (GeoTIFF,\n"
+    "through GDAL), or else a headerless raw file (x fastest, then y, then z) described by\n"
+    "--dims and --type. Without --dims, a build with GDAL reads any raster GDAL reads\n"
+    "(.vrt, .asc, .dem, ...); its georeferencing goes into the meta chunk: origin (the centre\n"
+    "of pixel 0,0), spacing (the signed pixel sizes: negative y for north up; row 0 is\n"
+    "the raster's first row), crs (EPSG:n or WKT), and its no-data value (decision D73).\n"
     "\n"
     "Input:\n"
     "  --dims X[,Y[,Z]]      grid size in samples (raw input)\n"
     "  --type T              sample type: uint8, int16, uint16, int32, float32, float64 (raw input)\n"
     "  --endian little|big   byte order of IN (default little)\n"
+    "  --band N              the band of a multi-band raster read through GDAL (1-based)\n"
     "  --nodata V            sample value that marks missing data, e.g. -32768 for SRTM voids\n"
+    "                        (overrides the raster's own no-data value)\n"
     "\n"
     "Coding (default: wavelet, lossless):\n"
     "  --coding wavelet|stored  wavelet: B-spline wavelet coding (spec 4, 5); stored: raw samples\n"
@@ -183,7 +189,7 @@ int runEncode(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"dims", "type", "endian", "nodata", "coding", "order", "levels", "max-error",
+                  {{"dims", "type", "endian", "band", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy",
                     "wavelet", "prediction"},
                    {"quiet", "help", "lossless", "progressive"},
@@ -214,9 +220,16 @@ int runEncode(int argc, char** argv) {
                   kExitUsage);
     if (std::string problem = gridHeaderProblem(raw.header); !problem.empty())
       return fail(cmd, "--dims: " + problem, kExitUsage);
-  } else if (gridFormatOf(in) == GridFormat::kRaw) {
+  } else if (gridFormatOf(in) == GridFormat::kRaw && !gridFormatsHaveGdal()) {
+    // With GDAL, readGridInput offers the file to GDAL first and says both.
     return fail(cmd, "headerless raw input needs --dims and --type (see 'mrsv encode --help')",
                 kExitUsage);
+  }
+  if (args.has("band")) {
+    uint64_t band = 0;
+    if (args.has("dims") || !parseUint64(args.value("band"), &band) || band < 1 || band > 65535)
+      return fail(cmd, "--band takes a band number from 1, for rasters read through GDAL", kExitUsage);
+    raw.band = static_cast<int>(band);
   }
   if (args.has("endian")) {
     if (args.value("endian") == "big") raw.big_endian = true;

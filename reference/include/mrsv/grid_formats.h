@@ -1,6 +1,9 @@
 // Grid file formats read and written by the tools (never by the decoder):
-// headerless raw, NRRD (attached header, raw encoding), PGM (P5 or P2) and
-// SRTM .hgt. The format is chosen by the file name's extension.
+// headerless raw, NRRD (attached header, raw encoding), PGM (P5 or P2),
+// SRTM .hgt and, in builds with GDAL (CMake option MRSV_GDAL), GeoTIFF and
+// any other raster GDAL reads. The format is chosen by the file name's
+// extension; a file with none of the known extensions and no raw layout is
+// offered to GDAL, which recognises rasters by their content.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +15,10 @@
 
 namespace mrsv {
 
-enum class GridFormat { kRaw, kNrrd, kPgm, kHgt };
+enum class GridFormat { kRaw, kNrrd, kPgm, kHgt, kGeoTiff };
+
+// Whether this build reads rasters and writes GeoTIFF through GDAL.
+bool gridFormatsHaveGdal();
 
 GridFormat gridFormatOf(const std::string& path);
 
@@ -21,12 +27,16 @@ struct RawLayout {
   bool has_layout = false;
   GridHeader header;
   bool big_endian = false;
+  // Rasters read through GDAL: the 1-based band to read; 0 reads a raster of
+  // one band and refuses one of several (MRSV grids hold one value per sample).
+  int band = 0;
 };
 
 struct GridInput {
   GridHeader header;             // sizes, sample type; .hgt also sets nodata -32768
   std::vector<uint8_t> samples;  // little-endian, x fastest
-  Metadata metadata;             // what the format says: NRRD spacings, .hgt units and CRS
+  Metadata metadata;             // what the format says: NRRD spacings, .hgt units and CRS,
+                                 // a GDAL raster's georeferencing (decision D73)
 };
 
 // Reads a grid file; on failure returns false with one line in `error`
@@ -41,9 +51,19 @@ bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& 
 // The bytes of a grid file for `path`'s format: `size` gives the sizes of
 // `samples` (smaller than the header's at reduced resolution). Taken by value:
 // a caller done with its samples moves them in, and a raw file then is them,
-// without a copy.
-bool encodeGridOutput(const std::string& path, const GridHeader& header, const uint32_t size[3],
+// without a copy. A GeoTIFF takes its georeferencing from `metadata` (origin,
+// spacing, crs: decision D73), which at reduced resolution must already hold
+// the coarser spacing (reducedResolutionMetadata).
+bool encodeGridOutput(const std::string& path, const GridHeader& header,
+                      const Metadata& metadata, const uint32_t size[3],
                       std::vector<uint8_t> samples, bool big_endian,
                       std::vector<uint8_t>* out, std::string* error);
+
+// The meta entries of a grid decoded `reduce_levels` levels above the finest
+// (spec 5.8.3): output position i stands for sample i * 2^K_a along axis a, so
+// `spacing` is multiplied by 2^K_a, K_a = min(reduce_levels, levels[a]);
+// `origin` stays. A stored grid (no levels) keeps its spacing.
+Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& header,
+                                   const uint8_t levels[3], int reduce_levels);
 
 }  // namespace mrsv

@@ -1,13 +1,18 @@
 // Grid file formats of the tools: headerless raw, NRRD (attached, raw
-// encoding), PGM (P5 binary or P2 plain, 8 or 16 bit) and SRTM .hgt.
+// encoding), PGM (P5 binary or P2 plain, 8 or 16 bit), SRTM .hgt, and rasters
+// through GDAL (gdal_grid.cpp) in builds that have it.
 #include "mrsv/grid_formats.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <utility>
 
+#include "io/gdal_grid.h"
+#include "io/number_list.h"
 #include "mrsv/file_io.h"
 #include "mrsv/metadata.h"
 #include "mrsv/raw_grid.h"
@@ -328,22 +333,47 @@ bool readHgt(const std::string& path, const std::vector<uint8_t>& bytes, GridInp
 
 }  // namespace
 
+bool gridFormatsHaveGdal() { return gdalAvailable(); }
+
 GridFormat gridFormatOf(const std::string& path) {
   if (endsWith(path, ".nrrd")) return GridFormat::kNrrd;
   if (endsWith(path, ".pgm")) return GridFormat::kPgm;
   if (endsWith(path, ".hgt")) return GridFormat::kHgt;
+  if (endsWith(path, ".tif") || endsWith(path, ".tiff")) return GridFormat::kGeoTiff;
   return GridFormat::kRaw;
 }
 
 bool readGridInput(const std::string& path, const RawLayout& raw, GridInput* in,
                    std::string* error) {
   *in = GridInput{};
+  const GridFormat format = gridFormatOf(path);
+  // GDAL opens the file itself (a raster may have side files: .aux.xml,
+  // world files, a VRT's sources), so only its readability is checked here,
+  // for the same error as the other formats.
+  if (format == GridFormat::kGeoTiff || (format == GridFormat::kRaw && !raw.has_layout && gdalAvailable())) {
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+      std::fclose(f);
+    } else {
+      *error = path + ": " + std::strerror(errno);
+      return false;
+    }
+    if (!readGdalGrid(path, raw.band, in, error)) {
+      if (format == GridFormat::kRaw && error->find(": not a raster GDAL reads") != std::string::npos)
+        *error += "; headerless raw input needs --dims and --type";
+      return false;
+    }
+    return true;
+  }
+  if (raw.band != 0) {
+    *error = path + ": --band is for rasters read through GDAL";
+    return false;
+  }
   std::vector<uint8_t> bytes;
   if (!readWholeFile(path, &bytes, error)) {
     *error = path + ": " + *error;
     return false;
   }
-  return readGridBytes(path, gridFormatOf(path), raw, std::move(bytes), in, error);
+  return readGridBytes(path, format, raw, std::move(bytes), in, error);
 }
 
 bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& raw,
@@ -354,6 +384,10 @@ bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& 
     case GridFormat::kNrrd: ok = readNrrd(name, bytes, in, error); break;
     case GridFormat::kPgm: ok = readPgm(name, bytes, in, error); break;
     case GridFormat::kHgt: ok = readHgt(name, bytes, in, error); break;
+    case GridFormat::kGeoTiff:
+      // GDAL reads files, with their side files, not bytes (readGridInput).
+      *error = name + ": a GeoTIFF is read through GDAL from its file";
+      return false;
     default:
       if (!raw.has_layout) {
         *error = name + ": headerless raw input needs --dims and --type";
@@ -380,16 +414,24 @@ bool readGridBytes(const std::string& name, GridFormat format, const RawLayout& 
   return true;
 }
 
-bool encodeGridOutput(const std::string& path, const GridHeader& header, const uint32_t size[3],
+bool encodeGridOutput(const std::string& path, const GridHeader& header,
+                      const Metadata& metadata, const uint32_t size[3],
                       std::vector<uint8_t> samples, bool big_endian,
                       std::vector<uint8_t>* out, std::string* error) {
   std::vector<uint8_t>& body = samples;
   GridFormat format = gridFormatOf(path);
   const size_t bytes = sampleSize(header.sample_type);
+  if (format == GridFormat::kGeoTiff) {
+    if (big_endian) {
+      *error = path + ": --endian is for raw and NRRD output; a GeoTIFF records its own byte order";
+      return false;
+    }
+    return encodeGeoTiff(path, header, metadata, size, body, out, error);
+  }
   if (format == GridFormat::kPgm) {
     if (header.num_dims != 2 ||
         (header.sample_type != SampleType::kUint8 && header.sample_type != SampleType::kUint16)) {
-      *error = path + ": PGM holds 2-D uint8 or uint16 grids only; write .raw or .nrrd";
+      *error = path + ": PGM holds 2-D uint8 or uint16 grids only; write .raw, .nrrd or .tif";
       return false;
     }
     std::string head = "P5\n" + std::to_string(size[0]) + " " + std::to_string(size[1]) + "\n" +
@@ -404,7 +446,7 @@ bool encodeGridOutput(const std::string& path, const GridHeader& header, const u
     if (big_endian) swapSampleBytes(&body, bytes);
     out->assign(head.begin(), head.end());
   } else if (format == GridFormat::kHgt) {
-    *error = path + ": writing .hgt is not supported; write .raw, .nrrd or .pgm";
+    *error = path + ": writing .hgt is not supported; write .raw, .nrrd, .pgm or .tif";
     return false;
   } else {  // raw: the samples alone
     if (big_endian) swapSampleBytes(&body, bytes);
@@ -413,6 +455,20 @@ bool encodeGridOutput(const std::string& path, const GridHeader& header, const u
   }
   out->insert(out->end(), body.begin(), body.end());
   return true;
+}
+
+Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& header,
+                                   const uint8_t levels[3], int reduce_levels) {
+  Metadata out = metadata;
+  const std::string* text = metadata.find("spacing");
+  std::vector<double> spacing;
+  if (!text || reduce_levels <= 0 || header.coding != GridCoding::kWavelet ||
+      !parseMetaNumberList(*text, &spacing))
+    return out;
+  for (size_t a = 0; a < spacing.size() && a < 3; ++a)
+    spacing[a] = std::ldexp(spacing[a], std::min(reduce_levels, static_cast<int>(levels[a])));
+  out.set("spacing", formatMetaNumberList(spacing));
+  return out;
 }
 
 }  // namespace mrsv
