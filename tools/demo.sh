@@ -196,6 +196,26 @@ for e in 20 10 5; do
 done
 echo "  (demo/out/ct32_insertion_*.vtu: open in ParaView or with VTK/meshio; the samples are 'value')"
 
+echo
+echo "== 10. where users work: a GeoTIFF in and out (GDAL), the GDAL driver, Python =="
+tif=$root/../shared/data/terrain/big_tujunga_srtm1_30m_utm11.tif.zst
+if [ -f "$tif" ] && [ -x "$(command -v gdalinfo)" ] && [ -d "$root/build/gdalplugins" ]; then
+  zstd -dqf "$tif" -o "$out/tujunga.tif"
+  "$mrsv" encode --max-error 1 --progressive "$out/tujunga.tif" "$out/tujunga.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
+  "$mrsv" info "$out/tujunga.mrsv" | grep -E "crs|origin|spacing" | sed 's/^/  /'
+  "$mrsv" decode --quiet --levels 2 "$out/tujunga.mrsv" "$out/tujunga_levels2.tif"
+  echo "  demo/out/tujunga_levels2.tif (gdalinfo): $(gdalinfo "$out/tujunga_levels2.tif" | grep -E "^Size is|^Pixel Size" | tr '\n' ' ')"
+  echo "  the driver plugin: $(GDAL_DRIVER_PATH="$root/build/gdalplugins" gdalinfo "$out/tujunga.mrsv" | grep -E "^Driver|Overviews" | sed 's/^ *//' | tr '\n' ' ')"
+  PYTHONPATH=$root/build/python /usr/bin/python3 - "$out/tujunga.mrsv" <<'PY' | sed 's/^/  /'
+import sys, mrsv
+a, info = mrsv.decode(sys.argv[1], levels=1)
+print("python: mrsv.decode(levels=1) -> numpy %s %s, crs %s, error bound %g"
+      % (a.dtype, a.shape, info["metadata"].get("crs"), info["error_bound"]))
+PY
+else
+  echo "  (skipped: needs ../shared/data, gdal-bin and a build with GDAL; tools/setup.sh installs them)"
+fi
+
 {
   echo
   echo "== report: lossless sizes (bytes) =="
