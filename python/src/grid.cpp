@@ -17,6 +17,7 @@
 #include "mrsv/encode.h"
 #include "mrsv/file_io.h"
 #include "mrsv/grid.h"
+#include "mrsv/grid_formats.h"
 #include "mrsv/progressive_mesh.h"
 #include "mrsv/progressive_tet_mesh.h"
 
@@ -357,8 +358,12 @@ py::tuple decode(const py::object& source_object, int levels, const py::object& 
                        : grid.container.chunks.empty() ? kFileHeaderSize
                                                        : grid.container.chunks.back().endOffset();
   info["metadata"] = metadataDict(grid.metadata);
-  info["spacing"] = parsedNumbers(grid.metadata, "spacing", true);
-  info["origin"] = parsedNumbers(grid.metadata, "origin", true);
+  // spacing and origin describe the array returned: at reduced resolution an
+  // output step spans 2^K samples, as in `mrsv decode --levels K`'s GeoTIFF
+  // (metadata keeps the stream's own entries).
+  const Metadata output_metadata = reducedResolutionMetadata(grid.metadata, h, grid.wavelet.levels, levels);
+  info["spacing"] = parsedNumbers(output_metadata, "spacing", true);
+  info["origin"] = parsedNumbers(output_metadata, "origin", true);
   for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
     info[key] = parsedNumbers(grid.metadata, key, false);
   return py::make_tuple(samples, info);
@@ -401,8 +406,9 @@ bytes: read only the first N bytes, as if the rest had not arrived.
 Returns (array, info): the samples in numpy C order (z, y, x) with the
 stream's dtype, and a dict (shape, sample_type, coding, nodata, wavelet,
 decomposition_levels, bands_decoded, bands_total, residual_decoded, levels,
-complete, bytes, bytes_used, metadata, spacing, origin (x, y, z order),
-error_bound, error_max_abs, error_psnr_db, error_rmse).
+complete, bytes, bytes_used, metadata, spacing, origin (x, y, z order, of the
+array returned: with levels, spacing is 2^K times the stream's on an axis of
+K or more levels), error_bound, error_max_abs, error_psnr_db, error_rmse).
 Raises mrsv.Error when the stream breaks a rule.)doc");
 }
 

@@ -123,6 +123,15 @@ def test_metadata_round_trip(ct_head, tmp_path):
     for key, value in entries.items():
         assert info["metadata"][key] == value
     assert info["metadata"]["spacing"] == "1,1,2"
+    # At reduced resolution spacing and origin describe the array returned (an
+    # output step spans 2^K samples on each axis with K levels), as the GeoTIFF
+    # of `mrsv decode --levels K` does; metadata keeps the stream's entries.
+    coarse, info = mrsv.decode(path, levels=1)
+    k = [min(1, n) for n in info["decomposition_levels"]]
+    assert info["spacing"] == tuple(s * 2 ** a for s, a in zip((1.0, 1.0, 2.0), k))
+    assert info["origin"] == (96.0, 96.0, 80.5)
+    assert coarse.shape == tuple((n + 2 ** a - 1) // 2 ** a for n, a in zip(ct_head.shape, reversed(k)))
+    assert info["metadata"]["spacing"] == "1,1,2"
 
 
 def test_concurrent_decodes_release_the_gil(ct_head, tmp_path):
