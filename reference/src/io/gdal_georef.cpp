@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/number_list.h"
+#include "mrsv/raw_grid.h"
 
 namespace mrsv {
 
@@ -22,24 +23,9 @@ GDALDataType gdalTypeOf(SampleType type) {
 }
 
 double nodataValue(uint64_t bits, SampleType type) {
-  switch (type) {
-    case SampleType::kUint8: return static_cast<double>(bits & 0xff);
-    case SampleType::kInt16: return static_cast<int16_t>(bits & 0xffff);
-    case SampleType::kUint16: return static_cast<double>(bits & 0xffff);
-    case SampleType::kInt32: return static_cast<int32_t>(bits & 0xffffffffu);
-    case SampleType::kFloat32: {
-      uint32_t b = static_cast<uint32_t>(bits);
-      float f;
-      std::memcpy(&f, &b, 4);
-      return f;
-    }
-    case SampleType::kFloat64: {
-      double d;
-      std::memcpy(&d, &bits, 8);
-      return d;
-    }
-  }
-  return 0;
+  uint8_t bytes[8];
+  for (int k = 0; k < 8; ++k) bytes[k] = static_cast<uint8_t>(bits >> (8 * k));  // little-endian
+  return sampleValue(bytes, type);
 }
 
 bool geoTransformFromMetadata(const Metadata& metadata, double gt[6]) {
