@@ -289,7 +289,7 @@ with tempfile.TemporaryDirectory() as work:
         # Bad options and rasters: a one-line GDAL error naming the option and
         # the rule; nothing written.
         for co, words in ((["MAX_ERROR=-1"], "MAX_ERROR=-1: must be a number from 0"),
-                          (["RATE=2", "PSNR=40"], "at most one of"),
+                          (["RATE=2", "PSNR=40"], "creation options RATE, PSNR: give at most one of"),
                           (["ORDER=3", "WAVELET=CDF97"], "ORDER=3: is for WAVELET=BSPLINE"),
                           (["BOUND_ROUTE=PREDICTIVE", "PROGRESSIVE=YES"], "not progressive"),
                           (["CODING=STORED", "RATE=1"], "CODING=STORED takes no")):
@@ -298,6 +298,9 @@ with tempfile.TemporaryDirectory() as work:
                     expect=1, env=env)
             check(words in r.stderr and "bad.mrsv" in r.stderr, f"-co {co}: {r.stderr.strip()[:200]}")
             check(not os.path.exists(bad), f"-co {co}: an output was written")
+        r = run("gdal_translate", "-q", "-of", "MRSV", "-ot", "UInt32", vrt, vrt + ".u32.mrsv", expect=1, env=env)
+        check("u32.mrsv: the source raster: sample type UInt32" in r.stderr and not os.path.exists(vrt + ".u32.mrsv"),
+              f"UInt32 source: {r.stderr.strip()[:200]}")
         r = run("gdal_translate", "-q", "-of", "MRSV", multi, multi + ".gdal.mrsv", expect=1, env=env)
         check("gdal_translate -b N" in r.stderr and not os.path.exists(multi + ".gdal.mrsv"),
               f"multi-band source: {r.stderr.strip()[:200]}")

@@ -75,7 +75,15 @@ class CreationOptions {
       w.max_error = 0;
       ++targets;
     }
-    if (targets > 1) return fail("LOSSLESS", "give at most one of LOSSLESS, MAX_ERROR, RATE, PSNR, STEP, KEEP");
+    if (targets > 1) {
+      std::string given;
+      for (const char* name : {"LOSSLESS", "MAX_ERROR", "RATE", "PSNR", "STEP", "KEEP"})
+        if (value(name)) given += std::string(given.empty() ? "" : ", ") + name;
+      CPLError(CE_Failure, CPLE_IllegalArg,
+               "%s: creation options %s: give at most one of LOSSLESS, MAX_ERROR, RATE, PSNR, STEP, KEEP",
+               filename_, given.c_str());
+      return false;
+    }
     if (lossless && !CPLTestBool(lossless) && targets == 0)
       return fail("LOSSLESS", "NO needs one of MAX_ERROR, RATE, PSNR, STEP, KEEP");
     if (targets == 0) w.max_error = 0;
@@ -199,11 +207,13 @@ GDALDataset* mrsvCreateCopy(const char* filename, GDALDataset* source, int, char
   mrsv::GridInput input;
   std::string error;
   void* scaled = GDALCreateScaledProgress(0, 0.1, progress, progress_data);
-  const bool read = mrsv::readGdalDataset(GDALDataset::ToHandle(source), source->GetDescription(), 1, &input,
-                                          &error, GDALScaledProgress, scaled);
+  // (A source gdal_translate made in memory, e.g. for -ot, has no name.)
+  const std::string source_name = *source->GetDescription() ? source->GetDescription() : "the source raster";
+  const bool read = mrsv::readGdalDataset(GDALDataset::ToHandle(source), source_name, 1, &input, &error,
+                                          GDALScaledProgress, scaled);
   GDALDestroyScaledProgress(scaled);
   if (!read) {
-    CPLError(CE_Failure, CPLE_AppDefined, "%s", error.c_str());
+    CPLError(CE_Failure, CPLE_AppDefined, "%s: %s", filename, error.c_str());
     return nullptr;
   }
   if (cancelled(progress, progress_data, 0.1, filename)) return nullptr;
@@ -212,7 +222,7 @@ GDALDataset* mrsvCreateCopy(const char* filename, GDALDataset* source, int, char
       stored ? mrsv::encodeStoredGrid(input.header, input.samples, input.metadata, &stream)
              : mrsv::encodeWaveletGrid(input.header, input.samples, input.metadata, wavelet, &stream, nullptr);
   if (!e.ok()) {
-    CPLError(CE_Failure, CPLE_AppDefined, "%s: %s: %s", source->GetDescription(), e.field.c_str(),
+    CPLError(CE_Failure, CPLE_AppDefined, "%s: %s: %s: %s", filename, source_name.c_str(), e.field.c_str(),
              e.message.c_str());
     return nullptr;
   }
