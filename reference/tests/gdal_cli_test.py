@@ -9,7 +9,9 @@ Bad rasters must give one-line errors naming the file and leave no output.
 
 With the directory of the driver plugin gdal_MRSV.so, the same tools also
 open .mrsv files through it (GDAL_DRIVER_PATH): samples, georeferencing and
-overviews (the wavelet levels, as mrsv decode --levels K gives them).
+overviews (the wavelet levels, as mrsv decode --levels K gives them); and
+gdal_translate -of MRSV writes them: the bytes mrsv encode writes with the
+same options, refused options named with their rule.
 
 Usage: gdal_cli_test.py PATH/TO/mrsv SHARED_DATA_DIR ON|OFF [PLUGIN_DIR]
 (ON|OFF is the build's MRSV_GDAL; OFF exits 77, which ctest reports as
