@@ -367,7 +367,7 @@ const H5Z_class2_t kFilterClass = {
     static_cast<H5Z_filter_t>(MRSV_H5Z_FILTER_ID),
     1,  // encoder present
     1,  // decoder present
-    "mrsv: MRSV grid streams (lossless, rate, PSNR or max error)",
+    "mrsv: MRSV grid stream per chunk",
     nullptr,  // can_apply: set_local checks and names what it refuses
     setLocal,
     filter,
