@@ -17,7 +17,7 @@ exact in float32), reversible for lossless, fixed accuracy for an error bound
 still against the data's own bytes, so it is what a user storing the data with
 ZFP gets.
 
-  /usr/bin/python3 tools/bench/hdf5_bench.py            # about 2 minutes on 2 cores
+  /usr/bin/python3 tools/bench/hdf5_bench.py            # about 3 minutes on 2 cores
   /usr/bin/python3 tools/bench/hdf5_bench.py --reps 1 --plugin build/hdf5plugins
 
 HDF5_PLUGIN_PATH is set by the script (the MRSV plugin's directory, then
