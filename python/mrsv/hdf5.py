@@ -7,7 +7,7 @@ build/hdf5plugins; h5py itself needs nothing more.
 """
 import struct
 
-HDF5_FILTER_ID = 421  # MRSV_H5Z_FILTER_ID: from HDF5's range for filters under test (decision D74)
+HDF5_FILTER_ID = 421  # MRSV_H5Z_FILTER_ID: from HDF5's range for filters under test (decision D75)
 _MODES = {"lossless": 0, "rate": 1, "psnr": 2, "max_error": 3}
 
 

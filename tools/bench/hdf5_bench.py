@@ -153,7 +153,7 @@ def main():
           "ratio = the data's bytes / stored chunk bytes; MB/s of the data's bytes")
     # 1024 x 512 of Big Tujunga: whole chunks, so that no filter codes padding
     # (HDF5 pads edge chunks with the fill value, a cliff beside the terrain
-    # for every coder but MRSV, which can take the fill value as no-data: D74).
+    # for every coder but MRSV, which can take the fill value as no-data: D75).
     terrain = load(ARGS.data, "terrain/big_tujunga_1197x643_int16le.raw.zst", "<i2", (643, 1197))[:512, :1024]
     ct = load(ARGS.data, "volume/ct_head_stanford_cthead_256x256x99_uint8.raw.zst", "u1", (99, 256, 256))
     with tempfile.TemporaryDirectory(prefix="mrsv_hdf5_bench_") as tmp:

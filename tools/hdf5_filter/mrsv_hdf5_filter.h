@@ -5,7 +5,7 @@
 #define MRSV_HDF5_FILTER_H
 
 /* From the range 256-511 that HDF5 leaves for filters under test (decision
- * D74); 305 and 307 in it are registered (LZO, BZIP2) and avoided. An
+ * D75); 305 and 307 in it are registered (LZO, BZIP2) and avoided. An
  * official identifier is to be requested from The HDF Group. */
 #define MRSV_H5Z_FILTER_ID 421
 
