@@ -206,6 +206,8 @@ if [ -f "$tif" ] && [ -x "$(command -v gdalinfo)" ] && [ -d "$root/build/gdalplu
   "$mrsv" decode --quiet --levels 2 "$out/tujunga.mrsv" "$out/tujunga_levels2.tif"
   echo "  demo/out/tujunga_levels2.tif (gdalinfo): $(gdalinfo "$out/tujunga_levels2.tif" | grep -E "^Size is|^Pixel Size" | tr '\n' ' ')"
   echo "  the driver plugin: $(GDAL_DRIVER_PATH="$root/build/gdalplugins" gdalinfo "$out/tujunga.mrsv" | grep -E "^Driver|Overviews" | sed 's/^ *//' | tr '\n' ' ')"
+  GDAL_DRIVER_PATH="$root/build/gdalplugins" gdal_translate -q -of MRSV -co MAX_ERROR=1 -co PROGRESSIVE=YES "$out/tujunga.tif" "$out/tujunga_gdal.mrsv"
+  echo "  gdal_translate -of MRSV -co MAX_ERROR=1 -co PROGRESSIVE=YES: $(cmp -s "$out/tujunga.mrsv" "$out/tujunga_gdal.mrsv" && echo "the same bytes as mrsv encode's" || echo "DIFFERENT bytes from mrsv encode's")"
   PYTHONPATH=$root/build/python /usr/bin/python3 - "$out/tujunga.mrsv" <<'PY' | sed 's/^/  /'
 import sys, mrsv
 a, info = mrsv.decode(sys.argv[1], levels=1)

@@ -140,6 +140,19 @@ struct DecodedGrid {
 // and leaves `out` holding what was read before it.
 Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedGrid* out);
 
+// What a decode of a wavelet-coded grid with DecodeOptions::reduce_levels
+// gives and reads, known from its GHDR and WHDR alone (spec 5.8.3): the sizes
+// of its samples (DecodedGrid::output_size) and how many GBND chunks, the
+// first in stream order, its synthesis uses. A prefix of the stream that ends
+// before the next GBND decodes to the same samples (the GDAL driver's
+// overviews read no more). False for a stored grid or headers with no plan.
+struct ReducedResolution {
+  uint32_t size[3] = {0, 0, 0};
+  uint32_t bands_needed = 0;
+};
+bool reducedResolution(const GridHeader& grid, const WaveletHeader& wavelet, int reduce_levels,
+                       ReducedResolution* out);
+
 // spec: 3.4 canonical output, the bytes the conformance suite hashes.
 std::vector<uint8_t> canonicalGridOutput(const DecodedGrid& grid);
 

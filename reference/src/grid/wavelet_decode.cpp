@@ -448,6 +448,25 @@ bool synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
   return true;
 }
 
+// Output box of a synthesis stopped `stop` levels above the finest (at most
+// the plan's levels): per axis the low-pass block of level axis_stop, cut to
+// what covers the grid (spec 5.8.3).
+void outputBox(const wavelet::GridPlan& plan, int stop, uint32_t size[3], int axis_stop[3]) {
+  for (int a = 0; a < 3; ++a) {
+    const wavelet::AxisPlan& ax = plan.axis[a];
+    axis_stop[a] = stop < ax.levels ? stop : ax.levels;
+    if (axis_stop[a] == 0) {
+      size[a] = ax.samples;
+    } else if (wavelet::isCdf97(ax.order)) {
+      size[a] = ax.size(axis_stop[a]);  // no padding (4.11.1)
+    } else {
+      uint32_t d = static_cast<uint32_t>(ax.order - 1);
+      uint32_t step = 1u << axis_stop[a];
+      size[a] = (ax.samples - d + step - 1) / step + d;
+    }
+  }
+}
+
 // spec: 5.8 synthesis and output mapping.
 Error produceSamples(const DecodeOptions& options, const ChunkView& last, WaveletState* s,
                      DecodedGrid* out) {
@@ -475,23 +494,10 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
     s->keep->values.assign(s->coefficients.get(), s->coefficients.get() + s->plan.paddedCount());
   }
 
-  // Output box: the low-pass block of level `stop`, cut to what covers the grid.
   uint32_t size[3];
   int axis_stop[3];
-  for (int a = 0; a < 3; ++a) {
-    const wavelet::AxisPlan& ax = s->plan.axis[a];
-    axis_stop[a] = stop < ax.levels ? stop : ax.levels;
-    if (axis_stop[a] == 0) {
-      size[a] = ax.samples;
-    } else if (wavelet::isCdf97(ax.order)) {
-      size[a] = ax.size(axis_stop[a]);  // no padding (4.11.1)
-    } else {
-      uint32_t d = static_cast<uint32_t>(ax.order - 1);
-      uint32_t step = 1u << axis_stop[a];
-      size[a] = (ax.samples - d + step - 1) / step + d;
-    }
-    out->output_size[a] = size[a];
-  }
+  outputBox(s->plan, stop, size, axis_stop);
+  for (int a = 0; a < 3; ++a) out->output_size[a] = size[a];
   const size_t bytes_per_sample = sampleSize(g.sample_type);
   const uint64_t count = uint64_t{size[0]} * size[1] * size[2];
   if (Error e = checkMemory(s->plan.paddedCount() * 16 + count * bytes_per_sample, options, last);
@@ -619,6 +625,25 @@ Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
   }
   if (out->bands_decoded == 0) return {};  // a prefix before any band: shape only
   return produceSamples(options, c.chunks.back(), &s, out);
+}
+
+bool reducedResolution(const GridHeader& grid, const WaveletHeader& wavelet, int reduce_levels,
+                       ReducedResolution* out) {
+  const uint32_t samples[3] = {grid.size_x, grid.size_y, grid.size_z};
+  const int levels[3] = {wavelet.levels[0], wavelet.levels[1], wavelet.levels[2]};
+  wavelet::GridPlan plan;
+  if (grid.coding != GridCoding::kWavelet || reduce_levels < 0 ||
+      !wavelet::makeGridPlan(grid.num_dims, samples, wavelet.order, levels, &plan))
+    return false;
+  const int stop = reduce_levels < plan.maxLevels() ? reduce_levels : plan.maxLevels();
+  int axis_stop[3];
+  outputBox(plan, stop, out->size, axis_stop);
+  // The scaling block (first) always; the detail bands above level `stop`.
+  const std::vector<wavelet::Band> bands = wavelet::bandsOf(plan);
+  out->bands_needed = 0;
+  for (size_t b = 0; b < bands.size(); ++b)
+    if (b == 0 || bands[b].level > stop) ++out->bands_needed;
+  return true;
 }
 
 }  // namespace mrsv
