@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -90,6 +91,10 @@ const char kHelp[] =
     "                        box touches. 256 (2-D) or 64 (3-D) is a good size. A rate or PSNR\n"
     "                        target holds for the whole grid (one step for all tiles), an\n"
     "                        error bound for every sample. Not with --roi\n"
+    "  --out-of-core         with --tile and a raw IN: read IN a row of tiles at a time and\n"
+    "                        keep the coded tiles in a temporary file, so that the memory is\n"
+    "                        a row of tiles, not the grid (lossless, --max-error or --step;\n"
+    "                        the same stream as without it)\n"
     "  --threads N           tiles coded at once (default: the number of cores); the output\n"
     "                        is the same whatever N\n"
     "  --quiet               no progress output\n"
@@ -201,7 +206,7 @@ int runEncode(int argc, char** argv) {
                   {{"dims", "type", "endian", "band", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy",
                     "wavelet", "prediction", "tile", "threads"},
-                   {"quiet", "help", "lossless", "progressive"},
+                   {"quiet", "help", "lossless", "progressive", "out-of-core"},
                    {"meta"}},
                   &error))
     return fail(cmd, error + " (see 'mrsv encode --help')", kExitUsage);
@@ -358,6 +363,40 @@ int runEncode(int argc, char** argv) {
   Metadata metadata;
   if (!parseMetaOptions(args, &metadata, &error)) return fail(cmd, error, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+  if (args.flag("out-of-core")) {
+    if (tile_sizes.empty() || !raw.has_layout)
+      return fail(cmd, "--out-of-core needs --tile and a headerless raw IN (--dims, --type)", kExitUsage);
+    if (args.has("bits-per-sample") || args.has("psnr") || args.has("roi"))
+      return fail(cmd, "--out-of-core takes --lossless, --max-error or --step (not --bits-per-sample, --psnr "
+                       "or --roi in this version)", kExitUsage);
+    GridHeader header = raw.header;
+    if (args.has("nodata")) {
+      if (!parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))
+        return fail(cmd, error, kExitUsage);
+      header.grid_flags |= kGridFlagHasNodata;
+    }
+    for (int a = 0; a < 3; ++a)
+      tiled.tile_size[a] = a >= header.num_dims ? 1 : tile_sizes[std::min<size_t>(a, tile_sizes.size() - 1)];
+    std::unique_ptr<GridBoxReader> reader =
+        openRawBoxReader(in, header, raw.big_endian ? Endian::kBig : Endian::kLittle, &error);
+    if (!reader) return fail(cmd, error, kExitIo);
+    Progress progress("encode", args.flag("quiet"));
+    tiled.progress = [&](uint64_t done, uint64_t total) {
+      progress.update(static_cast<double>(done) / static_cast<double>(total));
+    };
+    AtomicFileWriter sink;
+    if (!sink.open(out, &error)) return fail(cmd, out + ": " + error, kExitIo);
+    WaveletEncodeReport report;
+    if (Error e = encodeTiledGridFromReader(header, *reader, metadata, wavelet, tiled, sink, &report); !e.ok())
+      return fail(cmd, in + ": " + e.field + ": " + e.message,
+                  e.status == Status::kIoError ? kExitIo : kExitInvalidData);
+    if (!sink.commit(&error)) return fail(cmd, out + ": " + error, kExitIo);
+    if (!args.flag("quiet"))
+      std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g (out of core)\n",
+                   out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                   std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(), report.max_abs_error);
+    return kExitOk;
+  }
 
   Progress progress("encode", args.flag("quiet"));
   GridInput input;
@@ -401,7 +440,13 @@ int runEncode(int argc, char** argv) {
   if (!e.ok()) return fail(cmd, in + ": " + e.field + ": " + e.message, kExitInvalidData);
   progress.update(0.9);
   if (!writeFileAtomically(out, stream, &error)) return fail(cmd, out + ": " + error, kExitIo);
-  if (coding == "wavelet" && !args.flag("quiet")) {
+  if (coding == "wavelet" && !args.flag("quiet") && !tile_sizes.empty()) {
+    std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, tiled, "
+                         "up to %d levels per tile\n",
+                 out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                 std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(), report.max_abs_error,
+                 report.levels);
+  } else if (coding == "wavelet" && !args.flag("quiet")) {
     std::fprintf(stderr,
                  "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, "
                  "%s, %llu coefficients kept, L2 error %.6g (orthogonal estimate %.6g)\n",

@@ -8,6 +8,7 @@
 #include "mrsv/grid.h"
 #include "mrsv/metadata.h"
 #include "mrsv/status.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv {
 
@@ -105,5 +106,14 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
                       const Metadata& metadata, const WaveletEncodeOptions& options,
                       const TiledEncodeOptions& tiled, std::vector<uint8_t>* out,
                       WaveletEncodeReport* report);
+
+// encodeTiledGrid() for a grid read a row of tiles at a time from `reader`,
+// the coded tiles kept in a temporary file until the stream is written to
+// `out`: memory is bounded by a row of tiles, the tiles in flight and the
+// index, not by the grid. Lossless, error-bound, step and keep targets only
+// (a rate or PSNR target would read the grid once per step tried).
+Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                                const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
+                                ByteSink& out, WaveletEncodeReport* report);
 
 }  // namespace mrsv

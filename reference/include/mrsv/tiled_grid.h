@@ -110,6 +110,23 @@ class MemoryByteSource : public ByteSource {
 // Opens `path` for reading; null with `error` set when it cannot be opened.
 std::unique_ptr<ByteSource> openFileByteSource(const std::string& path, std::string* error);
 
+// Where an encoder that does not hold the whole grid reads samples: a box at
+// a time (spec 11.7, out-of-core tiled encoding).
+class GridBoxReader {
+ public:
+  virtual ~GridBoxReader() = default;
+  // Copies the samples of [origin, origin + size), little-endian, x fastest,
+  // to `out`; false with `error` set when they cannot be read.
+  virtual bool read(const uint32_t origin[3], const uint32_t size[3], uint8_t* out, std::string* error) = 0;
+};
+
+// Where an encoder writes a stream it does not hold whole.
+class ByteSink {
+ public:
+  virtual ~ByteSink() = default;
+  virtual bool write(const uint8_t* data, size_t size) = 0;
+};
+
 // Decodes the samples of `region` (sample coordinates of the full grid).
 // A tiled grid is read through its index: the file header, the chunks up to
 // TIDX and the chunks of the tiles the region touches, nothing else; their

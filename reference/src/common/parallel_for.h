@@ -1,11 +1,15 @@
 // Runs fn(i) for i in [0, n) on up to `threads` threads. Work is handed out
 // one index at a time, so uneven items (tiles of different difficulty) keep
 // every thread busy; the caller makes the result independent of the order.
+// An exception thrown by fn (std::bad_alloc) stops the handing out and is
+// thrown again in the calling thread once every thread has finished.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <exception>
+#include <mutex>
 #include <thread>  // needs Threads::Threads
 #include <vector>
 
@@ -19,8 +23,16 @@ void parallelFor(uint64_t n, int threads, Fn&& fn) {
     return;
   }
   std::atomic<uint64_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_lock;
   auto work = [&] {
-    for (uint64_t i = next++; i < n; i = next++) fn(i);
+    try {
+      for (uint64_t i = next++; i < n; i = next++) fn(i);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failure_lock);
+      if (!failure) failure = std::current_exception();
+      next = n;
+    }
   };
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
@@ -33,6 +45,7 @@ void parallelFor(uint64_t n, int threads, Fn&& fn) {
   }
   work();
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace mrsv

@@ -6,4 +6,5 @@ set(MRSV_TILES_DECODE_SOURCES
   reference/src/tiles/tiled_decode.cpp
   reference/src/tiles/region_decode.cpp)
 set(MRSV_TILES_ENCODE_SOURCES
-  reference/src/tiles/tiled_encode.cpp)
+  reference/src/tiles/tiled_encode.cpp
+  reference/src/tiles/tiled_stream_encode.cpp)

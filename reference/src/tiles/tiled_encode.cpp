@@ -13,6 +13,7 @@
 #include "common/parallel_for.h"
 #include "mrsv/encode.h"
 #include "mrsv/tiled_grid.h"
+#include "tiles/tile_encoding.h"
 
 namespace mrsv {
 
@@ -22,7 +23,10 @@ Error invalid(std::string field, std::string message) {
   return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
 }
 
-std::vector<uint8_t> tileSamples(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples) {
+}  // namespace
+
+std::vector<uint8_t> tileSamplesFrom(const TileGrid& tiles, uint64_t tile, const uint8_t* box,
+                                     const uint32_t box_origin[3], const uint32_t box_size[3]) {
   uint32_t origin[3], size[3];
   tiles.box(tile, origin, size);
   const size_t bytes = sampleSize(tiles.grid.sample_type);
@@ -31,30 +35,29 @@ std::vector<uint8_t> tileSamples(const TileGrid& tiles, uint64_t tile, const std
   uint8_t* dst = out.data();
   for (uint32_t z = 0; z < size[2]; ++z)
     for (uint32_t y = 0; y < size[1]; ++y, dst += row) {
-      const uint64_t at = ((uint64_t{origin[2] + z} * tiles.grid.size_y + origin[1] + y) * tiles.grid.size_x +
-                           origin[0]) * bytes;
-      std::memcpy(dst, samples.data() + at, row);
+      const uint64_t at = ((uint64_t{origin[2] + z - box_origin[2]} * box_size[1] + origin[1] + y - box_origin[1]) *
+                               box_size[0] + origin[0] - box_origin[0]) * bytes;
+      std::memcpy(dst, box + at, row);
     }
   return out;
 }
 
-// What one tile's stream brings to the tiled stream: its chunks after GHDR
-// (meta and MEND left out) and its measured error.
-struct TileResult {
-  std::vector<std::pair<ChunkType, std::vector<uint8_t>>> chunks;
-  uint64_t bytes = 0;  // framed size of the chunks
-  double sse = 0, max_abs = 0;
-  int levels = 0;
-  Error error;
-};
+namespace {
 
-TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
-                      const WaveletEncodeOptions& options) {
+std::vector<uint8_t> tileSamples(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples) {
+  const uint32_t origin[3] = {0, 0, 0};
+  const uint32_t size[3] = {tiles.grid.size_x, tiles.grid.size_y, tiles.grid.size_z};
+  return tileSamplesFrom(tiles, tile, samples.data(), origin, size);
+}
+
+}  // namespace
+
+TileResult encodeTileSamples(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& tile_samples,
+                             const WaveletEncodeOptions& options) {
   TileResult r;
   std::vector<uint8_t> stream;
   WaveletEncodeReport report;
-  r.error = encodeWaveletGrid(tiles.tileHeader(tile), tileSamples(tiles, tile, samples), Metadata{}, options,
-                              &stream, &report);
+  r.error = encodeWaveletGrid(tiles.tileHeader(tile), tile_samples, Metadata{}, options, &stream, &report);
   if (!r.error.ok()) {
     r.error.message = "tile " + std::to_string(tile) + ": " + r.error.message;
     return r;
@@ -75,6 +78,13 @@ TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<ui
   r.max_abs = report.max_abs_error;
   r.levels = report.levels;
   return r;
+}
+
+namespace {
+
+TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
+                      const WaveletEncodeOptions& options) {
+  return encodeTileSamples(tiles, tile, tileSamples(tiles, tile, samples), options);
 }
 
 // A tile at a given step (rate and PSNR targets): the full pyramid and 2 and
@@ -98,29 +108,52 @@ TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vec
   return best;
 }
 
-// The valid samples' count and range, for the PSNR of the whole grid.
-void validRange(const GridHeader& h, const std::vector<uint8_t>& samples, uint64_t* count, double* lo,
-                double* hi) {
+}  // namespace
+
+void ErrorTally::addSamples(const GridHeader& h, const uint8_t* samples, size_t size) {
   const size_t bytes = sampleSize(h.sample_type);
-  *count = 0;
-  *lo = std::numeric_limits<double>::infinity();
-  *hi = -*lo;
-  for (size_t i = 0; i < samples.size(); i += bytes) {
-    if (h.hasNodata() && std::memcmp(samples.data() + i, &h.nodata_bits, bytes) == 0) continue;
-    const double v = sampleValue(samples.data() + i, h.sample_type);
-    ++*count;
-    *lo = std::min(*lo, v);
-    *hi = std::max(*hi, v);
+  for (size_t i = 0; i < size; i += bytes) {
+    if (h.hasNodata() && std::memcmp(samples + i, &h.nodata_bits, bytes) == 0) continue;
+    const double v = sampleValue(samples + i, h.sample_type);
+    ++valid;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
   }
 }
 
-std::string text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+void ErrorTally::addTile(const TileResult& r) {
+  sse += r.sse;
+  max_abs = std::max(max_abs, r.max_abs);
+  levels = std::max(levels, r.levels);
 }
 
-}  // namespace
+Metadata ErrorTally::record(const Metadata& metadata, const WaveletEncodeOptions& options,
+                            WaveletEncodeReport* report) const {
+  auto text = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return std::string(buf);
+  };
+  const double mse = valid ? sse / static_cast<double>(valid) : 0;
+  const double range = valid ? hi - lo : 0;
+  report->sum_squared_error = sse;
+  report->max_abs_error = max_abs;
+  report->levels = levels;
+  report->psnr = mse > 0 ? 10 * std::log10(range * range / mse) : std::numeric_limits<double>::infinity();
+  Metadata recorded = metadata;
+  if (options.max_error >= 0) recorded.set("error_bound", text(std::floor(options.max_error)));
+  recorded.set("error_max_abs", text(max_abs));
+  recorded.set("error_psnr_db", std::isinf(report->psnr) ? "inf" : text(report->psnr));
+  recorded.set("error_rmse", text(std::sqrt(mse)));
+  return recorded;
+}
+
+Metadata ErrorTally::probe(const Metadata& metadata) {
+  Metadata probe = metadata;
+  for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
+    probe.set(key, "-1.23457e+300");
+  return probe;
+}
 
 Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samples, const Metadata& metadata,
                       const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
@@ -155,13 +188,13 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
     return {};
   };
   WaveletEncodeReport rep;
-  uint64_t valid = 0;
-  double lo = 0, hi = 0;
-  validRange(h, samples, &valid, &lo, &hi);
+  ErrorTally tally;
+  tally.addSamples(h, samples.data(), samples.size());
+  const uint64_t valid = tally.valid;
+  const double lo = tally.lo, hi = tally.hi;
   // The framed bytes of everything but the tile chunks: header, GHDR, TINF,
   // TIDX, MEND, and the meta chunk with its recorded error figures.
-  Metadata probe = metadata;
-  for (const char* key : {"error_max_abs", "error_psnr_db", "error_rmse"}) probe.set(key, "-1.23457e+300");
+  const Metadata probe = ErrorTally::probe(metadata);
   auto overhead = [&](uint64_t tile_chunks) {
     return double(kFileHeaderSize + 3 * (kChunkHeaderSize + kChunkCrcSize) + kGridHeaderSize +
                   kTilingHeaderSize + (kChunkHeaderSize + kChunkCrcSize) + n_tiles + 4 * tile_chunks +
@@ -218,22 +251,12 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
     rep.iterations = 1;
   }
   // The stream: GHDR, meta, TINF, TIDX, then the tile chunks round by round.
-  uint64_t bytes, chunks;
-  double sse;
-  totals(&bytes, &chunks, &sse);
+  uint64_t chunks = 0;
   for (const TileResult& r : results) {
-    rep.max_abs_error = std::max(rep.max_abs_error, r.max_abs);
-    rep.levels = std::max(rep.levels, r.levels);
+    tally.addTile(r);
+    chunks += r.chunks.size();
   }
-  const double mse = valid ? sse / static_cast<double>(valid) : 0;
-  const double range = hi - lo;
-  rep.sum_squared_error = sse;
-  rep.psnr = mse > 0 ? 10 * std::log10(range * range / mse) : std::numeric_limits<double>::infinity();
-  Metadata recorded = metadata;
-  if (options.max_error >= 0) recorded.set("error_bound", text(std::floor(options.max_error)));
-  recorded.set("error_max_abs", text(rep.max_abs_error));
-  recorded.set("error_psnr_db", std::isinf(rep.psnr) ? "inf" : text(rep.psnr));
-  recorded.set("error_rmse", text(std::sqrt(mse)));
+  const Metadata recorded = tally.record(metadata, options, &rep);
   std::vector<std::vector<uint32_t>> lengths(n_tiles);
   std::vector<uint8_t> counts(n_tiles);
   for (uint64_t t = 0; t < n_tiles; ++t) {
