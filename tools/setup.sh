@@ -17,6 +17,7 @@ packages=(
   python3-matplotlib                        # the section 7 pictures (tools/experiments, experiments_section7_quick)
   python3-pybind11 python3-numpy python3-pytest  # the Python module (python/) and its tests
   libgdal-dev gdal-bin python3-gdal        # GeoTIFF and other rasters (MRSV_GDAL); gdalinfo, gdal_translate in the tests
+  libopenmpi-dev openmpi-bin                # mrsv-mpi (MRSV_MPI): tiled grids coded by MPI ranks, mpi_tests
 )
 
 missing=()

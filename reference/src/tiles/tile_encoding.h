@@ -44,4 +44,12 @@ struct ErrorTally {
   static Metadata probe(const Metadata& metadata);
 };
 
+// spec 2.3: the framed bytes of a chunk (type, length, payload, CRC-32C).
+std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, uint32_t length);
+
+// The bytes before the tile chunks of a tiled stream: file header, GHDR, meta
+// (with the recorded error figures), TINF and TIDX.
+std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& recorded, const TilingHeader& tiling,
+                                     const std::vector<uint8_t>& index);
+
 }  // namespace mrsv

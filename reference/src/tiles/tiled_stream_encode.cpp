@@ -3,6 +3,7 @@
 // written in round order at the end. Memory: one row of tiles, the tiles in
 // flight, the index; the stream is byte-identical to encodeTiledGrid()'s.
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "common/crc32c.h"
@@ -19,19 +20,9 @@ Error invalid(std::string field, std::string message) {
 }
 Error ioFailure(std::string what) { return Error{Status::kIoError, 0, "file", std::move(what)}; }
 
-// spec 2.3: a chunk written to a sink, its CRC computed on the way.
-bool writeChunk(ByteSink& out, const ChunkType& type, const uint8_t* payload, uint32_t length) {
-  uint8_t head[kChunkHeaderSize];
-  for (int i = 0; i < 4; ++i) head[i] = static_cast<uint8_t>(type.c[i]);
-  for (int i = 0; i < 4; ++i) head[4 + i] = static_cast<uint8_t>(length >> (8 * i));
-  uint32_t crc = crc32c(crc32c(0, head, sizeof head), payload, length);
-  uint8_t tail[kChunkCrcSize];
-  for (int i = 0; i < 4; ++i) tail[i] = static_cast<uint8_t>(crc >> (8 * i));
-  return out.write(head, sizeof head) && (length == 0 || out.write(payload, length)) && out.write(tail, sizeof tail);
-}
-
 bool writeChunk(ByteSink& out, const ChunkType& type, const std::vector<uint8_t>& payload) {
-  return writeChunk(out, type, payload.data(), static_cast<uint32_t>(payload.size()));
+  const std::vector<uint8_t> bytes = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
+  return out.write(bytes.data(), bytes.size());
 }
 
 struct FileCloser {
@@ -46,6 +37,31 @@ struct SpilledChunk {
 };
 
 }  // namespace
+
+std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, uint32_t length) {
+  std::vector<uint8_t> out(kChunkHeaderSize + size_t{length} + kChunkCrcSize);
+  for (int i = 0; i < 4; ++i) out[i] = static_cast<uint8_t>(type.c[i]);
+  for (int i = 0; i < 4; ++i) out[4 + i] = static_cast<uint8_t>(length >> (8 * i));
+  if (length > 0) std::memcpy(out.data() + kChunkHeaderSize, payload, length);
+  const uint32_t crc = crc32c(0, out.data(), kChunkHeaderSize + size_t{length});
+  for (int i = 0; i < 4; ++i) out[kChunkHeaderSize + length + i] = static_cast<uint8_t>(crc >> (8 * i));
+  return out;
+}
+
+std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& recorded, const TilingHeader& tiling,
+                                     const std::vector<uint8_t>& index) {
+  std::vector<uint8_t> out(kSignature, kSignature + sizeof kSignature);
+  out.insert(out.end(), {kVersionMajor, kVersionMinor, 0});
+  auto add = [&](const ChunkType& type, const std::vector<uint8_t>& payload) {
+    const std::vector<uint8_t> bytes = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
+    out.insert(out.end(), bytes.begin(), bytes.end());
+  };
+  add(kChunkGridHeader, serializeGridHeader(grid));
+  add(kChunkMeta, serializeMetadata(recorded));
+  add(kChunkTiling, serializeTilingHeader(tiling));
+  add(kChunkTileIndex, index);
+  return out;
+}
 
 Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
                                 const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
@@ -117,16 +133,9 @@ Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader,
   WaveletEncodeReport rep;
   rep.iterations = 1;
   const Metadata recorded = tally.record(metadata, options, &rep);
-  const std::vector<uint8_t> file_header = {kSignature, kSignature + sizeof kSignature};
-  std::vector<uint8_t> head = file_header;
-  head.insert(head.end(), {kVersionMajor, kVersionMinor, 0});
+  const std::vector<uint8_t> head = tiledStreamHead(h, recorded, tiling, index);
   uint64_t written = head.size();
-  if (!out.write(head.data(), head.size()) || !writeChunk(out, kChunkGridHeader, serializeGridHeader(h)) ||
-      !writeChunk(out, kChunkMeta, serializeMetadata(recorded)) ||
-      !writeChunk(out, kChunkTiling, serializeTilingHeader(tiling)) || !writeChunk(out, kChunkTileIndex, index))
-    return ioFailure("cannot write the stream");
-  written += 4 * (kChunkHeaderSize + kChunkCrcSize) + kGridHeaderSize + serializeMetadata(recorded).size() +
-             kTilingHeaderSize + index.size();
+  if (!out.write(head.data(), head.size())) return ioFailure("cannot write the stream");
   std::vector<uint8_t> payload;
   for (const auto& [tile, nth] : tileChunkOrder(counts)) {
     const SpilledChunk& c = spilled[tile][nth];
@@ -137,7 +146,7 @@ Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader,
     if (!writeChunk(out, c.type, payload)) return ioFailure("cannot write the stream");
     written += kChunkHeaderSize + uint64_t{c.length} + kChunkCrcSize;
   }
-  if (!writeChunk(out, kChunkEnd, nullptr, 0)) return ioFailure("cannot write the stream");
+  if (!writeChunk(out, kChunkEnd, {})) return ioFailure("cannot write the stream");
   written += kChunkHeaderSize + kChunkCrcSize;
   rep.bytes = written;
   rep.bits_per_sample = 8.0 * static_cast<double>(written) / static_cast<double>(h.sampleCount());
