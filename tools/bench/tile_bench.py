@@ -138,6 +138,50 @@ def main():
               f"opj_decompress -d on the same window {1000 * opj:.0f} ms; MRSV region / OpenJPEG speed "
               f"{opj / region:.2f}x")
 
+        # Out of core: the grid read a row of tiles at a time (peak memory
+        # against the raw size), and MPI ranks (speed-up, same bytes).
+        ooc = os.path.join(tmp, "ooc.mrsv")
+        dt, rss, _ = run([mrsv, "encode", "--quiet", *dims, "--tile", "256", "--max-error", "2", "--threads", "2",
+                          "--out-of-core", raw, ooc])
+        print(f"encode --out-of-core, 2 threads: {dt:.1f} s, peak {rss:.0f} MB ({100 * rss / raw_mb:.0f} % of raw); "
+              f"same stream: {open(ooc, 'rb').read() == open(stream, 'rb').read()}")
+        os.remove(ooc)
+        mpi = os.path.join(os.path.dirname(mrsv), "mrsv-mpi")
+        if os.path.exists(mpi):
+            times = {}
+            for np_ in (1, 2):
+                o = os.path.join(tmp, f"mpi{np_}.mrsv")
+                times[np_], _, _ = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi,
+                                        "encode", *dims, "--tile", "256", "--max-error", "2", raw, o])
+            same = open(os.path.join(tmp, "mpi2.mrsv"), "rb").read() == open(stream, "rb").read()
+            print(f"mrsv-mpi encode: {times[1]:.1f} s on 1 rank, {times[2]:.1f} s on 2 (speed-up "
+                  f"{times[1] / times[2]:.2f}x); same stream as mrsv encode: {same}")
+            dec = {}
+            for np_ in (1, 2):
+                dec[np_] = best(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi, "decode",
+                                 os.path.join(tmp, "mpi2.mrsv"), os.path.join(tmp, "mpi.raw")], 2)
+            print(f"mrsv-mpi decode: {dec[1]:.2f} s on 1 rank, {dec[2]:.2f} s on 2 (speed-up {dec[1] / dec[2]:.2f}x)")
+        if not args.quick:
+            print("== a 1024^3 CT volume (the bonsai scan mirrored 4 x 4 x 4), 64^3 bricks, out of core")
+            import numpy as np
+            b = np.fromfile(load("ct_bonsai_256x256x256_uint8", tmp), dtype=np.uint8).reshape(256, 256, 256)
+            row = np.concatenate([b, b[:, :, ::-1]] * 2, axis=2)
+            slab = np.concatenate([row, row[:, ::-1, :]] * 2, axis=1)
+            vol = os.path.join(tmp, "bonsai1024.raw")
+            with open(vol, "wb") as f:
+                for k in range(4):
+                    (slab if k % 2 == 0 else slab[::-1]).tofile(f)
+            del b, row, slab
+            vo = os.path.join(tmp, "bonsai1024.mrsv")
+            dt, rss, _ = run([mrsv, "encode", "--quiet", "--dims", "1024,1024,1024", "--type", "uint8", "--tile", "64",
+                              "--step", "2", "--threads", "2", "--out-of-core", vol, vo])
+            print(f"encode --out-of-core --step 2: {dt:.0f} s, peak {rss:.0f} MB ({100 * rss / 1024:.1f} % of the "
+                  f"1024 MiB raw), {8 * os.path.getsize(vo) / 2**30:.3f} bits/sample")
+            r3, _, err = run([mrsv, "decode", "--region", "300,400,500,428,528,628", vo, os.path.join(tmp, "v.raw")])
+            read3 = re.search(r"(\d+) of (\d+) bytes read", err)
+            print(f"decode a 128^3 region: {1000 * r3:.0f} ms, {int(read3.group(1)) / 2**20:.1f} of "
+                  f"{int(read3.group(2)) / 2**20:.1f} MiB read")
+            os.remove(vol)
         print("== rate-distortion at 1 bit per sample: tiled against untiled")
         grids = [(n, ["--dims", "1201,1201", "--type", "int16", "--nodata", "-32768"], "256") for n in SRTM]
         grids.append(("big_tujunga_1197x643_int16le", ["--dims", "1197,643", "--type", "int16"], "256"))

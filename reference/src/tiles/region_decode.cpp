@@ -90,9 +90,11 @@ void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, st
   const size_t bytes = sampleSize(grid.header.sample_type);
   uint32_t first[3], count[3], shift[3];
   for (int a = 0; a < 3; ++a) {
-    shift[a] = static_cast<uint32_t>(
-        std::min<int>(levels, a < grid.header.num_dims && grid.header.coding == GridCoding::kWavelet
-                                  ? grid.wavelet.levels[a] : 0));
+    // A tiled grid decoded whole is already on the 2^K lattice (spec 11.6).
+    const int native = grid.header.coding == GridCoding::kTiled ? levels
+                       : a < grid.header.num_dims && grid.header.coding == GridCoding::kWavelet ? grid.wavelet.levels[a]
+                                                                                                : 0;
+    shift[a] = static_cast<uint32_t>(std::min<int>(levels, native));
     const uint64_t step = uint64_t{1} << levels;
     const uint64_t g0 = (uint64_t{region.lo[a]} + step - 1) / step * step;
     count[a] = g0 < region.hi[a] ? static_cast<uint32_t>((region.hi[a] - g0 + step - 1) / step) : 0;
