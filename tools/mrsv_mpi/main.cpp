@@ -48,6 +48,7 @@ const char kHelp[] =
     "  --tile N[,N[,N]]      tile size (required)\n"
     "  --lossless            every sample exact (the default)\n"
     "  --max-error D         every sample within D (integer samples)\n"
+    "  --bound-route R       residual, predictive or auto (default): as mrsv encode\n"
     "  --step S              quantiser step S in sample units\n"
     "  --levels L            at most L decomposition levels per axis\n"
     "  --progressive         the most levels --levels allows in every tile\n"
@@ -127,7 +128,7 @@ int runEncode(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"dims", "type", "endian", "nodata", "tile", "max-error", "step", "levels", "threads"},
+                  {{"dims", "type", "endian", "nodata", "tile", "max-error", "bound-route", "step", "levels", "threads"},
                    {"lossless", "progressive", "help"},
                    {"meta"}},
                   &error))
@@ -170,6 +171,12 @@ int runEncode(int argc, char** argv) {
   options.max_error = 0;
   if (args.has("max-error") && !cli::parseDouble(args.value("max-error"), &options.max_error))
     return agree(cli::kExitUsage, "--max-error is not a number");
+  if (args.has("bound-route")) {
+    const std::string& route = args.value("bound-route");
+    if (route == "residual") options.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+    else if (route == "predictive") options.bound_route = WaveletEncodeOptions::BoundRoute::kPredictive;
+    else if (route != "auto") return agree(cli::kExitUsage, "--bound-route must be residual, predictive or auto");
+  }
   if (args.has("step")) {
     options.max_error = -1;
     if (!cli::parseDouble(args.value("step"), &options.step) || !(options.step > 0))
