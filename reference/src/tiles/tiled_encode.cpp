@@ -91,7 +91,7 @@ TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<ui
 // 1 levels are tried, and the one with the least sse + lambda * bits is kept,
 // lambda = (ln 2 / 6) step^2, the slope of D(R) = sigma^2 2^-2R at D = step^2 / 12.
 // A small tile pays for each band's cold context models and chunk framing,
-// so it often does best with fewer levels (decision D74).
+// so it often does best with fewer levels (decision D77).
 TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
                             const WaveletEncodeOptions& options) {
   TileResult best = encodeTile(tiles, tile, samples, options);
