@@ -111,7 +111,11 @@ TEST(TiledGrid, RegionsEqualTheWholeDecodeAndReadOnlyTheirTiles) {
                   at(whole.samples, y * 317 + x));
     // Bytes read: everything up to the end of TIDX, then exactly the chunks
     // of the tiles met, and the header of MEND.
-    const ChunkView& tidx = region.container.chunks.back();
+    Container c;
+    ASSERT_TRUE(readContainer(stream.data(), stream.size(), ContainerOptions{}, &c).ok());
+    const ChunkView& tidx = c.chunks[3];
+    ASSERT_EQ(tidx.chunk_type, kChunkTileIndex);
+    ASSERT_EQ(region.container.chunks.back().offset, tidx.offset);
     TileIndex index;
     ASSERT_TRUE(parseTileIndex(tidx, 5 * 8, &index).ok());
     uint64_t expected = tidx.endOffset();
@@ -162,7 +166,9 @@ TEST(TiledGrid, PrefixesDecodeAndGainSamplesOnceEveryTileHasABand) {
     DecodeOptions options;
     options.container.allow_partial_tail = true;
     DecodedGrid d = decode(std::vector<uint8_t>(stream.begin(), stream.begin() + chunk.endOffset()), options);
-    if (had_samples) EXPECT_TRUE(d.has_samples);
+    if (had_samples) {
+      EXPECT_TRUE(d.has_samples);
+    }
     had_samples = d.has_samples;
   }
   EXPECT_TRUE(had_samples);

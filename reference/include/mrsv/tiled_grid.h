@@ -134,7 +134,8 @@ class ByteSink {
 // read whole and cropped. With options.reduce_levels = K the output holds the
 // reduced-resolution positions (spec 11.6) that stand for samples inside the
 // region. `out->output_size` is the region's output size; `out->samples` its
-// samples, x fastest; `out->header` the whole grid's header.
+// samples, x fastest; `out->header` the whole grid's header;
+// `out->container` the chunks read up to TIDX, without their payloads.
 Error decodeGridRegion(ByteSource& source, const GridRegion& region, const DecodeOptions& options,
                        DecodedGrid* out);
 

@@ -84,6 +84,12 @@ Error frameChunk(const std::vector<uint8_t>& bytes, uint64_t offset, bool verify
   return {};
 }
 
+// The chunk views of a region decode point into buffers that die with the
+// call: their offsets and lengths stay, their payloads are dropped.
+void forgetPayloads(DecodedGrid* grid) {
+  for (ChunkView& c : grid->container.chunks) c.payload = nullptr;
+}
+
 void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, std::vector<uint8_t>* samples) {
   // An untiled grid decoded whole: its output position i stands for sample
   // i * 2^K_a (spec 5.8.3), so the region's lattice is a sub-box of it.
@@ -126,6 +132,7 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
   DecodedGrid parsed;
   if (Error e = decodeGrid(head.data(), head.size(), head_options, &parsed); !e.ok()) {
     *out = std::move(parsed);
+    forgetPayloads(out);
     return e;
   }
   if (parsed.container.chunks.empty()) {
@@ -142,6 +149,7 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
     *out = std::move(parsed);
     out->samples = std::move(cropped);
     regionOutputSize(region, options.reduce_levels, out->output_size);
+    forgetPayloads(out);
     return {};
   }
   // A tiled grid: `parsed` holds GHDR, meta, TINF and TIDX (decodeTiledGrid
@@ -225,6 +233,7 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
   out->tiles_total = parsed.tiles_total;
   Error e = decodeTiles(tiles, jobs, complete && all_present && structural.ok(), end_offset, region, options, out);
   regionOutputSize(region, options.reduce_levels, out->output_size);
+  forgetPayloads(out);
   return e.ok() ? structural : e;
 }
 
