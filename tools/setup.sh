@@ -22,6 +22,7 @@ packages=(
   hdf5-filter-plugin-zfp-serial hdf5-filter-plugin  # ZFP, LZ4, BZip2 HDF5 filters: peers in tools/bench/hdf5_bench.py
   libhdf5-openmpi-dev openmpi-bin          # parallel HDF5 for hdf5_filter_mpi_test (beside libhdf5-dev: the plugin
                                            # for h5py still builds against the serial HDF5, found through h5cc)
+  libopenmpi-dev openmpi-bin                # mrsv-mpi (MRSV_MPI): tiled grids coded by MPI ranks, mpi_tests
 )
 
 missing=()

@@ -1,5 +1,7 @@
 // mrsv decode: an MRSV file (or a prefix of one) to raw samples.
+#include <algorithm>
 #include <cstdio>
+#include <thread>
 #include <utility>
 
 #include "cli.h"
@@ -44,6 +46,12 @@ const char kHelp[] =
     "                        whose SHA-256 the conformance suite compares\n"
     "  --levels K            reduced resolution: stop the wavelet synthesis K levels above\n"
     "                        the finest (about 1/2^K of the samples along each axis)\n"
+    "  --region X0,Y0[,Z0],X1,Y1[,Z1]\n"
+    "                        decode only the box X0 <= x < X1, Y0 <= y < Y1 (Z0 <= z < Z1) of\n"
+    "                        samples; from a tiled stream (encode --tile) only the tiles the\n"
+    "                        box touches are read (spec 11.5). With --levels K, the samples\n"
+    "                        of the box on the lattice of every 2^K-th sample\n"
+    "  --threads N           tiles decoded at once (default: the number of cores)\n"
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived: the complete chunks among them are decoded\n"
     "  --quiet               no progress or notes on stderr\n"
@@ -53,13 +61,39 @@ const char kHelp[] =
     "to what its complete chunks hold. OUT is written under a temporary name and renamed\n"
     "when complete. Exit status: 0 done, 1 invalid stream, 2 usage error, 3 file error.\n";
 
+// "X0,Y0[,Z0],X1,Y1[,Z1]": a half-open box of samples.
+bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
+  std::vector<uint64_t> v;
+  for (size_t start = 0; start <= text.size();) {
+    size_t comma = std::min(text.find(',', start), text.size());
+    uint64_t x = 0;
+    if (!parseUint64(text.substr(start, comma - start), &x) || x > kMaxGridAxis) {
+      *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
+               std::to_string(kMaxGridAxis);
+      return false;
+    }
+    v.push_back(x);
+    start = comma + 1;
+  }
+  if (v.size() != 2 && v.size() != 4 && v.size() != 6) {
+    *error = "--region '" + text + "': give X0,X1 or X0,Y0,X1,Y1 or X0,Y0,Z0,X1,Y1,Z1";
+    return false;
+  }
+  const size_t dims = v.size() / 2;
+  for (size_t a = 0; a < dims; ++a) {
+    region->lo[a] = static_cast<uint32_t>(v[a]);
+    region->hi[a] = static_cast<uint32_t>(v[dims + a]);
+  }
+  return true;
+}
+
 }  // namespace
 
 int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "tets", "vertices", "fraction"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "tets", "vertices", "fraction", "region", "threads"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -83,12 +117,24 @@ int runDecode(int argc, char** argv) {
     return fail(cmd, "--levels '" + args.value("levels") + "' is not a whole number from 0 to 16",
                 kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+  GridRegion region;
+  const bool by_region = args.has("region");
+  if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (args.has("threads")) {
+    uint64_t n = 0;
+    if (!parseUint64(args.value("threads"), &n) || n < 1 || n > 1024)
+      return fail(cmd, "--threads must be a whole number from 1 to 1024", kExitUsage);
+    threads = static_cast<int>(n);
+  }
+  if (by_region && !args.has("bytes")) return runRegionDecode(args, in, out, region, threads, endian, levels);
 
   Progress progress("decode", args.flag("quiet"));
   std::vector<uint8_t> bytes;
   if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
   DecodeOptions options;
   options.reduce_levels = static_cast<int>(levels);
+  options.threads = threads;
   if (byte_limit < bytes.size()) {
     bytes.resize(static_cast<size_t>(byte_limit));
     options.container.allow_partial_tail = true;
@@ -100,6 +146,10 @@ int runDecode(int argc, char** argv) {
                 kExitUsage);
   if (levels > 0 && args.flag("canonical"))
     return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
+  if (by_region) {
+    MemoryByteSource source(bytes.data(), bytes.size());
+    return runRegionDecode(args, in, out, region, threads, endian, levels, &source);
+  }
   progress.update(0.2);
   DecodedGrid grid;
   if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok())
@@ -114,8 +164,11 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    const Metadata metadata =
-        reducedResolutionMetadata(grid.metadata, grid.header, grid.wavelet.levels, options.reduce_levels);
+    // A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6).
+    static const uint8_t kEveryAxis[3] = {16, 16, 16};
+    const Metadata metadata = reducedResolutionMetadata(
+        grid.metadata, grid.header,
+        grid.header.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels, options.reduce_levels);
     if (!encodeGridOutput(out, grid.header, metadata, grid.output_size, std::move(grid.samples),
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);

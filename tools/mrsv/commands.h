@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "mrsv/grid.h"
+#include "mrsv/raw_grid.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv::cli {
 
@@ -31,6 +33,12 @@ bool isTetEncode(int argc, char** argv);
 int runTetEncode(int argc, char** argv);
 int runTetDecode(const Args& args, const std::string& in, const std::string& out,
                  const std::vector<uint8_t>& bytes, const DecodeOptions& options);
+
+// mrsv decode --region (cmd_decode_region.cpp): a box of a grid, read through
+// the tile index when the stream is tiled. `source` null: IN is read by offset.
+int runRegionDecode(const Args& args, const std::string& in, const std::string& out,
+                    const GridRegion& region, int threads, Endian endian, uint64_t levels,
+                    ByteSource* source = nullptr);
 
 // mrsv compare of two tet meshes (cmd_compare_tets.cpp).
 bool isTetCompare(const Args& args);

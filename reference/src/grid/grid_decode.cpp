@@ -4,6 +4,7 @@
 
 #include "mrsv/grid.h"
 #include "grid/wavelet_decode.h"
+#include "tiles/tile_decode.h"
 
 namespace mrsv {
 
@@ -39,6 +40,7 @@ Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const Deco
     }
   }
   if (h.coding == GridCoding::kWavelet) return decodeWaveletGrid(options, out, coefficients);
+  if (h.coding == GridCoding::kTiled) return decodeTiledGrid(options, out);
 
   bool seen_stored = false;
   for (size_t i = 1; i < c.chunks.size(); ++i) {
