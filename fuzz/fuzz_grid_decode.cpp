@@ -57,7 +57,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         grid.samples.size() != grid.header.sampleCount() * mrsv::sampleSize(grid.header.sample_type))
       std::abort();
     (void)mrsv::canonicalGridOutput(grid);
-    if (grid.header.num_dims > 0 && grid.header.sampleCount() <= (1u << 20)) checkRegion(data, size, options, grid);
+    // Not after an ignored partial tail: a region decoder reads by the index,
+    // and damaged bytes there may frame differently from the tail the whole
+    // decode dropped (a true prefix has no such bytes).
+    if (grid.header.num_dims > 0 && grid.header.sampleCount() <= (1u << 20) && grid.container.ignored_tail_bytes == 0)
+      checkRegion(data, size, options, grid);
   }
   return 0;
 }

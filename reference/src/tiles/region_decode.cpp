@@ -71,6 +71,13 @@ Error frameChunk(const std::vector<uint8_t>& bytes, uint64_t offset, bool verify
   for (char ch : chunk.chunk_type.c)
     if (!((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')))
       return Error{Status::kBadChunkType, offset, "chunk_type", "a chunk type must be four ASCII letters"};
+  // `bytes` holds the extent TIDX gives; a chunk_length other than that is
+  // 208 (11.1 rule 5), reported before the CRC, which cannot be read at the
+  // chunk's own length without reading past what the index locates.
+  if (uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize != bytes.size())
+    return Error{Status::kBadTileIndex, offset + 4, chunk.chunk_type.str() + ".chunk_length",
+                 "the chunk is " + std::to_string(chunk.chunk_length) + " bytes but TIDX says " +
+                     std::to_string(bytes.size() - kChunkHeaderSize - kChunkCrcSize)};
   chunk.payload = bytes.data() + kChunkHeaderSize;
   ByteReader crc(chunk.payload + chunk.chunk_length, 4);
   chunk.chunk_crc = crc.u32();
