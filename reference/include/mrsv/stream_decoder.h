@@ -61,6 +61,9 @@ class StreamDecoder {
   // ContainerOptions::allow_partial_tail an incomplete last chunk is ignored,
   // as a one-shot decode of the same bytes ignores it. Once only.
   Error finish();
+  // finish() for a stream cut short on purpose (a byte budget, mrsv decode
+  // --bytes): an incomplete last chunk is ignored, as with allow_partial_tail.
+  Error finishPrefix();
 
   const Error& error() const;
   bool finished() const;

@@ -33,6 +33,8 @@ class ContainerFramer {
   Error endsInsideChunk(uint64_t pos, uint64_t remaining, const ChunkView& chunk, Container* out) const;
   // The stream ends `extra` bytes after the MEND chunk (extra > 0).
   static Error trailingBytes(const Container& c, uint64_t extra);
+  // From now on endsInsideChunk() ignores the incomplete chunk.
+  void allowPartialTail() { options_.allow_partial_tail = true; }
 
  private:
   ContainerOptions options_;

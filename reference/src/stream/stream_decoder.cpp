@@ -210,6 +210,10 @@ StreamDecoder& StreamDecoder::operator=(StreamDecoder&&) noexcept = default;
 
 Error StreamDecoder::feed(const uint8_t* data, size_t size) { return impl_->feed(data, size); }
 Error StreamDecoder::finish() { return impl_->finish(); }
+Error StreamDecoder::finishPrefix() {
+  impl_->framer.allowPartialTail();
+  return impl_->finish();
+}
 const Error& StreamDecoder::error() const { return impl_->error; }
 bool StreamDecoder::finished() const { return impl_->finished; }
 uint64_t StreamDecoder::bytesFed() const { return impl_->fed; }
