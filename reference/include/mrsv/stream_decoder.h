@@ -7,9 +7,13 @@
 // Whatever the pieces, the result, errors included, is that of the one-shot
 // decoders (decodeGrid, decodeProgressiveMesh, decodeProgressiveTetMesh),
 // which are this decoder fed all the bytes at once: the same status, offset,
-// field and message. An error is reported by the feed() that completes the
-// chunk (or the file header) breaking a rule; the rules that need the end of
-// the stream (MEND, a truncated chunk, bytes after MEND) by finish().
+// field and message, the error Annex A.2 ranks first. A rule broken is seen
+// when the chunk breaking it is complete: problem() then holds it and nothing
+// after it is decoded or handed out. Framing errors (2.2, 2.3, 2.5) come first
+// in A.2 and the first of them is final: feed() returns it. Any other error
+// may still be outranked by a later chunk's framing (or, for payloads, by the
+// meta chunk), so finish() reports it; the rules that need the end of the
+// stream (MEND, a truncated chunk, bytes after MEND) are finish()'s too.
 #pragma once
 
 #include <cstddef>
@@ -54,7 +58,8 @@ class StreamDecoder {
 
   // The next `size` bytes of the stream. The bytes of a chunk that is not yet
   // complete are copied; complete chunks are decoded straight from `data`,
-  // which need not outlive the call. After an error every call returns it.
+  // which need not outlive the call. Returns framing errors (final: every
+  // later call returns it too).
   Error feed(const uint8_t* data, size_t size);
   // The stream ends: the rules of its end (spec 2.3, 2.5, and each profile's),
   // then the final outputs (a grid's samples). With
@@ -65,7 +70,10 @@ class StreamDecoder {
   // --bytes): an incomplete last chunk is ignored, as with allow_partial_tail.
   Error finishPrefix();
 
+  // The final error (from feed() or finish()), and the first rule broken in
+  // stream order so far (see above).
   const Error& error() const;
+  const Error& problem() const;
   bool finished() const;
   uint64_t bytesFed() const;
   StreamContent content() const;

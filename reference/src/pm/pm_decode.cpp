@@ -46,11 +46,15 @@ PmSteps::~PmSteps() = default;
 
 Error PmSteps::header(const ChunkView& chunk) {
   if (Error e = parsePmHeader(chunk, &out_->header); !e.ok()) return e;
+  out_->mesh.state().header = out_->header;
+  return {};
+}
+
+Error PmSteps::memory(const ChunkView& chunk) const {
   const uint64_t need = memoryNeeded(out_->header);
   if (need > options_.max_output_bytes)
     return Error{Status::kResourceLimit, chunk.offset, "PHDR",
                  "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
-  out_->mesh.state().header = out_->header;
   return {};
 }
 

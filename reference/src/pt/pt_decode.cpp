@@ -67,11 +67,15 @@ PtSteps::~PtSteps() = default;
 
 Error PtSteps::header(const ChunkView& chunk) {
   if (Error e = parsePtHeader(chunk, &out_->header); !e.ok()) return e;
+  out_->mesh.state().header = out_->header;
+  return {};
+}
+
+Error PtSteps::memory(const ChunkView& chunk) const {
   const uint64_t need = memoryNeeded(out_->header);
   if (need > options_.max_output_bytes)
     return Error{Status::kResourceLimit, chunk.offset, "THDR",
                  "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
-  out_->mesh.state().header = out_->header;
   return {};
 }
 

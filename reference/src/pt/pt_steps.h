@@ -21,8 +21,11 @@ class PtSteps {
   PtSteps(const PtSteps&) = delete;
   PtSteps& operator=(const PtSteps&) = delete;
 
-  // THDR, the stream's first chunk: the header and the memory it announces.
+  // THDR, the stream's first chunk.
   Error header(const ChunkView& chunk);
+  // The memory the header announces against DecodeOptions::max_output_bytes
+  // (spec 6.2, 7.2), checked after the meta chunk (Annex A.2), wherever it is.
+  Error memory(const ChunkView& chunk) const;
   // Any later whole chunk but MEND, in stream order. After DecodeOptions' stop
   // (out->stopped_early) chunks are passed over.
   Error chunk(const ChunkView& chunk);

@@ -4,6 +4,7 @@
 #include "mrsv/stream_decoder.h"
 
 #include <algorithm>
+#include <cstring>
 #include <utility>
 
 #include "bitstream/container_framer.h"
@@ -34,33 +35,60 @@ struct StreamDecoder::Impl {
   std::unique_ptr<PtSteps> pt_steps;
 
   // The unit being gathered: the file header (12 bytes), a chunk's header
-  // (8), then the whole chunk. `pending` holds its bytes when they came in
+  // (8), then the whole chunk. pending[0, have) holds its bytes when they came in
   // more than one piece.
   enum class Stage { kFileHeader, kChunks, kEnded } stage = Stage::kFileHeader;
   uint64_t pos = 0;  // stream offset of the unit
   size_t need = kFileHeaderSize;
   bool chunk_header_read = false;
   ChunkView current;
-  std::vector<uint8_t> pending;
+  std::vector<uint8_t> pending;  // grows to the unit's size as its bytes arrive
+  size_t have = 0;
+
+  void append(const uint8_t* data, size_t n) {
+    if (have + n > pending.size())  // doubling, not the chunk's length at once
+      pending.resize(std::min(need, std::max({have + n, 2 * pending.size(), size_t{4096}})));
+    uint8_t* to = pending.data() + have;
+    if (n <= 8) {  // a byte or a few at a time: no call to memcpy
+      for (size_t i = 0; i < n; ++i) to[i] = data[i];
+    } else {
+      std::memcpy(to, data, n);
+    }
+    have += n;
+  }
 
   uint64_t fed = 0;
   uint64_t trailing = 0;  // bytes after MEND
-  Error error;
+  // The first rule broken by a chunk's content, and the rank Annex A.2 gives
+  // it (3: content header, 4: meta, 5: memory, 6: other chunks). The framing
+  // of the rest of the stream comes first in A.2, and the meta chunk before
+  // ranks 5 and 6, so it is reported by finish() (unless one of those
+  // breaks a rule), while nothing else is decoded after it.
+  Error problem;
+  int problem_rank = 0;
+  Error error;  // final: a framing error, or what finish() reported
   bool finished = false;
   std::vector<StreamUnit> units;
 
   Error fail(Error e) {
     error = std::move(e);
+    have = 0;  // (so that feed()'s shortcut takes no more bytes)
     return error;
   }
+  void defer(Error e, int rank) {
+    if (problem_rank == 0 || rank < problem_rank) {
+      problem = std::move(e);
+      problem_rank = rank;
+    }
+  }
   Error step(const uint8_t* unit, bool* consumed);
-  Error contentHeader(const ChunkView& chunk);
-  Error chunk(const ChunkView& chunk);
+  void contentHeader(const ChunkView& chunk);
+  void chunk(const ChunkView& chunk);
   Error feed(const uint8_t* data, size_t size);
   Error finish();
 };
 
-Error StreamDecoder::Impl::contentHeader(const ChunkView& chunk) {
+void StreamDecoder::Impl::contentHeader(const ChunkView& chunk) {
   // The framing guarantees the first chunk is GHDR, PHDR or THDR (spec 2.5).
   content = chunk.chunk_type == kChunkGridHeader   ? StreamContent::kGrid
             : chunk.chunk_type == kChunkMeshHeader ? StreamContent::kMesh
@@ -73,47 +101,57 @@ Error StreamDecoder::Impl::contentHeader(const ChunkView& chunk) {
                            ? "not a progressive mesh stream (the content header is not PHDR; spec 1.6)"
                            : "not a progressive tet mesh stream (the content header is not THDR; spec 1.6)";
     content = expect;
-    return Error{Status::kUnsupportedProfile, chunk.offset, chunk.chunk_type.str(), what};
+    return defer(Error{Status::kUnsupportedProfile, chunk.offset, chunk.chunk_type.str(), what}, 3);
   }
+  Error e;
   switch (content) {
     case StreamContent::kGrid:
       grid_steps = std::make_unique<GridSteps>(options, &grid, keep);
-      return grid_steps->header(chunk);
+      if (e = grid_steps->header(chunk); !e.ok()) return defer(e, 3);
+      return;
     case StreamContent::kMesh:
       mesh.container = std::move(grid.container);
       grid.container = Container{};
       container = &mesh.container;
       pm_steps = std::make_unique<PmSteps>(options, &mesh);
-      return pm_steps->header(chunk);
+      if (e = pm_steps->header(chunk); !e.ok()) return defer(e, 3);
+      if (e = pm_steps->memory(chunk); !e.ok()) return defer(e, 5);
+      return;
     default:
       tets.container = std::move(grid.container);
       grid.container = Container{};
       container = &tets.container;
       pt_steps = std::make_unique<PtSteps>(options, &tets);
-      return pt_steps->header(chunk);
+      if (e = pt_steps->header(chunk); !e.ok()) return defer(e, 3);
+      if (e = pt_steps->memory(chunk); !e.ok()) return defer(e, 5);
+      return;
   }
 }
 
-Error StreamDecoder::Impl::chunk(const ChunkView& chunk) {
+void StreamDecoder::Impl::chunk(const ChunkView& chunk) {
+  if (container->chunks.size() == 1) return contentHeader(chunk);
+  // After a problem, only the meta chunk can still change what is reported.
+  const bool meta = chunk.chunk_type == kChunkMeta;
+  if (problem_rank != 0 && !(meta && problem_rank > 4)) return;
   StreamUnit unit;
   unit.chunk_type = chunk.chunk_type;
   unit.offset = chunk.offset;
   unit.end_offset = chunk.endOffset();
-  if (container->chunks.size() == 1) {
-    if (Error e = contentHeader(chunk); !e.ok()) return e;
-  } else if (grid_steps) {
+  Error e;
+  if (grid_steps) {
     if (chunk.chunk_type == kChunkBand) unit.index = grid.bands_decoded;
-    if (Error e = grid_steps->chunk(chunk); !e.ok()) return e;
+    e = grid_steps->chunk(chunk);
   } else if (pm_steps) {
     unit.index = mesh.batches_decoded;
-    if (Error e = pm_steps->chunk(chunk); !e.ok()) return e;
+    e = pm_steps->chunk(chunk);
   } else if (pt_steps) {
     unit.index = tets.batches_decoded;
-    if (Error e = pt_steps->chunk(chunk); !e.ok()) return e;
+    e = pt_steps->chunk(chunk);
   }
+  if (!e.ok()) return defer(e, meta ? 4 : 6);
+  if (problem_rank != 0) return;
   if (grid_steps && grid_steps->wavelet()) unit.complete_level = grid_steps->wavelet()->completeLevel();
   units.push_back(unit);
-  return {};
 }
 
 // One unit whose `need` bytes are at `unit`. *consumed: the unit is done
@@ -143,12 +181,19 @@ Error StreamDecoder::Impl::step(const uint8_t* unit, bool* consumed) {
     stage = Stage::kEnded;
     return {};
   }
-  Error e = chunk(current);
+  chunk(current);
   container->chunks.back().payload = nullptr;  // the bytes are not kept
-  return e;
+  return {};
 }
 
 Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size) {
+  // Most calls of a stream fed in small pieces only add to the unit being
+  // gathered (have > 0: not after MEND, not after an error or finish()).
+  if (have != 0 && size < need - have && !finished) {
+    append(data, size);
+    fed += size;
+    return {};
+  }
   if (!error.ok()) return error;
   if (finished)
     return fail(Error{Status::kInvalidArgument, fed, "stream", "bytes fed after finish()"});
@@ -159,7 +204,7 @@ Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size) {
       return {};
     }
     bool consumed = false;
-    if (pending.empty() && size >= need) {
+    if (have == 0 && size >= need) {
       // The whole unit is in this piece: decoded in place, not copied.
       const size_t n = need;
       if (Error e = step(data, &consumed); !e.ok()) return fail(e);
@@ -169,13 +214,13 @@ Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size) {
       }
       continue;
     }
-    const size_t take = std::min(need - pending.size(), size);
-    pending.insert(pending.end(), data, data + take);
+    const size_t take = std::min(need - have, size);
+    append(data, take);
     data += take;
     size -= take;
-    if (pending.size() < need) return {};
+    if (have < need) return {};
     if (Error e = step(pending.data(), &consumed); !e.ok()) return fail(e);
-    if (consumed) pending.clear();
+    if (consumed) have = 0;
   }
   return {};
 }
@@ -186,15 +231,16 @@ Error StreamDecoder::Impl::finish() {
   finished = true;
   if (stage == Stage::kFileHeader) {
     // Fewer than 12 bytes: the file header's rules on what there is.
-    if (Error e = framer.fileHeader(pending.data(), pending.size(), container); !e.ok()) return fail(e);
+    if (Error e = framer.fileHeader(pending.data(), have, container); !e.ok()) return fail(e);
   } else if (stage == Stage::kEnded) {
     if (trailing > 0) return fail(ContainerFramer::trailingBytes(*container, trailing));
-  } else if (!pending.empty()) {
-    if (Error e = framer.endsInsideChunk(pos, pending.size(), current, container); !e.ok())
+  } else if (have > 0) {
+    if (Error e = framer.endsInsideChunk(pos, have, current, container); !e.ok())
       return fail(e);
   }
-  pending.clear();
-  pending.shrink_to_fit();
+  have = 0;
+  std::vector<uint8_t>().swap(pending);
+  if (problem_rank != 0) return fail(problem);
   Error e;
   if (grid_steps) e = grid_steps->end(*container);
   else if (pm_steps) e = pm_steps->end(*container);
@@ -215,6 +261,7 @@ Error StreamDecoder::finishPrefix() {
   return impl_->finish();
 }
 const Error& StreamDecoder::error() const { return impl_->error; }
+const Error& StreamDecoder::problem() const { return impl_->problem; }
 bool StreamDecoder::finished() const { return impl_->finished; }
 uint64_t StreamDecoder::bytesFed() const { return impl_->fed; }
 StreamContent StreamDecoder::content() const { return impl_->content; }
@@ -234,6 +281,8 @@ int StreamDecoder::gridCompleteLevel() const {
 
 Error StreamDecoder::gridLevelSamples(int level, uint32_t size[3], std::vector<uint8_t>* samples) {
   Impl& d = *impl_;
+  // (A level complete before a problem is still whole: the chunk breaking
+  // the rule belongs to a finer level.)
   if (!d.error.ok()) return d.error;
   if (!d.grid_steps || !d.grid_steps->wavelet() || d.container->chunks.empty())
     return Error{Status::kInvalidArgument, d.pos, "levelSamples", "not a wavelet-coded grid"};
