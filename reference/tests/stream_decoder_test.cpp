@@ -4,6 +4,7 @@
 // it hands out as the bands arrive equal one-shot decodes at reduced resolution.
 #include <gtest/gtest.h>
 
+#include "common/crc32c.h"
 #include "mrsv/grid.h"
 #include "mrsv/progressive_mesh.h"
 #include "mrsv/progressive_tet_mesh.h"
@@ -166,6 +167,57 @@ TEST(StreamDecoder, ErrorIsReportedByTheFeedThatCompletesTheChunk) {
   EXPECT_EQ(describe(e), describe(expected));
   EXPECT_EQ(i, expected.offset + 4);  // the CRC's last byte completed the chunk
   EXPECT_EQ(describe(d.feed(bytes.data(), 1)), describe(expected));  // and stays
+}
+
+}  // namespace
+}  // namespace mrsv
+
+namespace mrsv {
+namespace {
+
+// A band that breaks a rule stops the decoding at once (problem()), but a
+// later chunk's framing error outranks it (Annex A.2): feed() returns that
+// one when its chunk completes, and finish() too, as the one-shot decoder.
+TEST(StreamDecoder, ProblemAtItsChunkErrorByAnnexA2) {
+  std::vector<uint8_t> bytes =
+      test::readFileOrFail(test::sourcePath("conformance/vectors/coded_valid/terrain_cdf97_lossless.mrsv"));
+  Container c;
+  ASSERT_TRUE(readContainer(bytes.data(), bytes.size(), ContainerOptions{}, &c).ok());
+  size_t band = 0;
+  while (band < c.chunks.size() && c.chunks[band].chunk_type != kChunkBand) ++band;
+  ASSERT_LT(band + 2, c.chunks.size());
+  // band_index 7 where 0 is next, with the CRC made right again.
+  const ChunkView& b = c.chunks[band];
+  bytes[b.payloadOffset()] = 7;
+  const uint32_t crc = crc32c(0, bytes.data() + b.offset, kChunkHeaderSize + b.chunk_length);
+  for (int i = 0; i < 4; ++i) bytes[b.payloadOffset() + b.chunk_length + i] = static_cast<uint8_t>(crc >> (8 * i));
+
+  for (bool later_crc : {false, true}) {
+    std::vector<uint8_t> s = bytes;
+    const ChunkView& last = c.chunks.back();
+    if (later_crc) s[last.endOffset() - 1] ^= 0x55;
+    DecodedGrid g;
+    const Error expected = decodeGrid(s.data(), s.size(), DecodeOptions{}, &g);
+    EXPECT_EQ(expected.status, later_crc ? Status::kChecksumMismatch : Status::kBadBandHeader);
+    StreamDecoder d;
+    Error e;
+    size_t i = 0;
+    for (; i < s.size() && e.ok(); ++i) {
+      e = d.feed(&s[i], 1);
+      if (i + 1 == b.endOffset()) {
+        EXPECT_EQ(d.problem().status, Status::kBadBandHeader);
+        EXPECT_EQ(d.problem().offset, b.payloadOffset());
+      }
+    }
+    if (later_crc) {
+      EXPECT_EQ(i, last.endOffset());  // returned by the feed completing that chunk
+      EXPECT_EQ(describe(e), describe(expected));
+    } else {
+      EXPECT_TRUE(e.ok());
+      EXPECT_EQ(describe(d.finish()), describe(expected));
+    }
+    for (const StreamUnit& unit : d.takeUnits()) EXPECT_LT(unit.offset, b.offset);  // nothing after it
+  }
 }
 
 }  // namespace
