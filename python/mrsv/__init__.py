@@ -9,6 +9,7 @@ has x varying fastest, the format's own sample order; values that list axes
     mrsv.encode(samples, "copy.mrsv", max_error=2, spacing=(30, 30))
     mrsv.check("copy.mrsv")
     pm = mrsv.ProgressiveMesh("bunny.mrsv"); pm.level = 100; pm.vertices, pm.faces
+    d = mrsv.StreamDecoder(); d.feed(piece); ...; d.finish(); d.samples()
 
 Broken streams raise mrsv.Error (code, name, offset, field, rule); bad
 arguments raise TypeError or ValueError; unreadable files raise OSError.
@@ -18,6 +19,7 @@ from ._mrsv import (
     Error,
     ProgressiveMesh,
     ProgressiveTetMesh,
+    StreamDecoder,
     check,
     decode,
     encode,
@@ -33,6 +35,7 @@ __all__ = [
     "Error",
     "ProgressiveMesh",
     "ProgressiveTetMesh",
+    "StreamDecoder",
     "check",
     "decode",
     "encode",
