@@ -29,8 +29,6 @@
 
 namespace mrsv {
 
-struct WaveletCoefficients;  // internal to the library
-
 // What the content header (the first chunk, spec 2.5) says the stream holds.
 enum class StreamContent { kUnknown, kGrid, kMesh, kTetMesh };
 
@@ -102,8 +100,7 @@ class StreamDecoder {
   struct Impl;
 
  private:
-  friend Error decodeGridOneShot(const uint8_t*, size_t, const DecodeOptions&, DecodedGrid*,
-                                 WaveletCoefficients*);
+  friend struct OneShotAccess;  // the one-shot decoders (stream_decoder.cpp)
   std::unique_ptr<Impl> impl_;
 };
 

@@ -122,7 +122,7 @@ struct WaveletState {
   bool void_values = false;           // DecodeOptions::void_values: the mask is not applied to samples
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
-  WaveletCoefficients* keep = nullptr;  // see decodeWaveletGrid()
+  WaveletCoefficients* keep = nullptr;  // see WaveletGridSteps (wavelet_decode.h)
   // The levels above this one are synthesised in place already (their bands
   // consumed): WaveletGridSteps::levelSamples() goes down one level at a time.
   int synthesized = INT_MAX;

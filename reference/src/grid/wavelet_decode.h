@@ -60,7 +60,7 @@ class WaveletGridSteps {
 };
 
 // decodeGrid() that also hands out the coefficients of a wavelet-coded grid
-// as decodeWaveletGrid() does (grid_decode.cpp).
+// (WaveletGridSteps' `keep`); defined in stream/stream_decoder.cpp.
 Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const DecodeOptions& options,
                                     DecodedGrid* out, WaveletCoefficients* coefficients);
 

@@ -84,7 +84,7 @@ struct StreamDecoder::Impl {
   Error step(const uint8_t* unit, bool* consumed);
   void contentHeader(const ChunkView& chunk);
   void chunk(const ChunkView& chunk);
-  Error feed(const uint8_t* data, size_t size);
+  Error feed(const uint8_t* data, size_t size, bool last = false);
   Error finish();
 };
 
@@ -186,7 +186,9 @@ Error StreamDecoder::Impl::step(const uint8_t* unit, bool* consumed) {
   return {};
 }
 
-Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size) {
+// `last`: finish() follows at once (the one-shot decoders), so the bytes of an
+// incomplete last chunk need not be kept, only counted.
+Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size, bool last) {
   // Most calls of a stream fed in small pieces only add to the unit being
   // gathered (have > 0: not after MEND, not after an error or finish()).
   if (have != 0 && size < need - have && !finished) {
@@ -215,6 +217,10 @@ Error StreamDecoder::Impl::feed(const uint8_t* data, size_t size) {
       continue;
     }
     const size_t take = std::min(need - have, size);
+    if (last && take == size && stage == Stage::kChunks && chunk_header_read) {
+      have += take;  // the stream ends inside this chunk: finish() needs the count only
+      return {};
+    }
     append(data, take);
     data += take;
     size -= take;
@@ -289,13 +295,17 @@ Error StreamDecoder::gridLevelSamples(int level, uint32_t size[3], std::vector<u
   return d.grid_steps->wavelet()->levelSamples(level, d.container->chunks.back(), size, samples);
 }
 
+struct OneShotAccess {
+  static StreamDecoder::Impl* impl(StreamDecoder& d) { return d.impl_.get(); }
+};
+
 namespace {
 
 // The one-shot decoders: the stream fed all at once. Their chunk views point
 // into `data`, which the caller keeps.
 template <class Result>
-Error oneShot(StreamDecoder* d, const uint8_t* data, size_t size, Result* result, Result* out) {
-  Error e = d->feed(data, size);
+Error oneShot(StreamDecoder::Impl* d, const uint8_t* data, size_t size, Result* result, Result* out) {
+  Error e = d->feed(data, size, /*last=*/true);
   if (e.ok()) e = d->finish();
   *out = std::move(*result);
   for (ChunkView& chunk : out->container.chunks) chunk.payload = data + chunk.payloadOffset();
@@ -307,8 +317,8 @@ Error oneShot(StreamDecoder* d, const uint8_t* data, size_t size, Result* result
 Error decodeGridOneShot(const uint8_t* data, size_t size, const DecodeOptions& options,
                         DecodedGrid* out, WaveletCoefficients* keep) {
   StreamDecoder d(options, StreamContent::kGrid);
-  d.impl_->keep = keep;
-  return oneShot(&d, data, size, &d.grid(), out);
+  OneShotAccess::impl(d)->keep = keep;
+  return oneShot(OneShotAccess::impl(d), data, size, &d.grid(), out);
 }
 
 Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedGrid* out) {
@@ -323,13 +333,13 @@ Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const Deco
 Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
                             DecodedMesh* out) {
   StreamDecoder d(options, StreamContent::kMesh);
-  return oneShot(&d, data, size, &d.mesh(), out);
+  return oneShot(OneShotAccess::impl(d), data, size, &d.mesh(), out);
 }
 
 Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
                                DecodedTetMesh* out) {
   StreamDecoder d(options, StreamContent::kTetMesh);
-  return oneShot(&d, data, size, &d.tetMesh(), out);
+  return oneShot(OneShotAccess::impl(d), data, size, &d.tetMesh(), out);
 }
 
 }  // namespace mrsv
