@@ -336,6 +336,7 @@ def build():
 CODED_PREFIX = "vectors/coded_"
 PT_PREFIX = "vectors/pt_"
 RECONSTRUCT_PREFIX = "vectors/reconstruct/"
+TILED_PREFIX = "vectors/tiled_"   # tiled_vectors.py
 RECONSTRUCT3_PREFIXES = ("vectors/reconstruct3/", "vectors/quadtree/")   # reconstruct_vectors3.py
 
 
@@ -347,7 +348,7 @@ def coded_entries():
         return []
     with open(path, encoding="utf-8") as f:
         return [e for e in json.load(f)["vectors"] if e["file"].startswith(
-            (CODED_PREFIX, PT_PREFIX, RECONSTRUCT_PREFIX) + RECONSTRUCT3_PREFIXES)]
+            (CODED_PREFIX, PT_PREFIX, RECONSTRUCT_PREFIX, TILED_PREFIX) + RECONSTRUCT3_PREFIXES)]
 
 
 def profile_of(data):
@@ -360,7 +361,8 @@ def with_rules(entry, data):
     name = os.path.splitext(os.path.basename(entry["file"]))[0]
     out = dict(entry)
     out["profile"] = profile_of(data)
-    out["rules"] = rules_of(name, entry["valid"])
+    # tiled_vectors.py writes its vectors' tags itself.
+    out["rules"] = entry["rules"] if entry["file"].startswith(TILED_PREFIX) else rules_of(name, entry["valid"])
     return out
 
 

@@ -15,6 +15,9 @@ The decoder is given as a command template with {in} and {out}:
     {vertices} that writes the canonical output of a mesh's level with that
     many vertices (spec 6.8); every level a vector's manifest entry lists
     ("levels") must then hash as listed.
+  --region-decoder (decode mode): a template with {in}, {out} and {region}
+    (X0,Y0[,Z0],X1,Y1[,Z1]) that writes the canonical region output of spec 11.5;
+    every region a vector lists ("regions") must then hash as listed.
   --profile P (repeatable): only the vectors of profiles P and "any" (spec 1.6),
     for a decoder that implements some profiles only.
   mesh mode: the command is a reconstructor (spec 8) with {in}, {out} and {args};
@@ -62,6 +65,22 @@ def check_levels(args, vector, path, out):
         digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
         if digest != level["sha256"]:
             return f"level of {level['vertices']} vertices: sha256 {digest}, expected {level['sha256']}"
+    return None
+
+
+def check_regions(args, vector, path, out):
+    """spec 11.5: each listed region of a tiled grid decodes to the listed canonical region output."""
+    for region in vector.get("regions", []):
+        if os.path.exists(out):
+            os.remove(out)
+        cmd = [part.replace("{in}", path).replace("{out}", out).replace("{region}", region["region"])
+               for part in shlex.split(args.region_decoder)]
+        run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
+        if run.returncode != 0 or not os.path.exists(out):
+            return f"region {region['region']}: exit {run.returncode}"
+        digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
+        if digest != region["sha256"]:
+            return f"region {region['region']}: sha256 {digest}, expected {region['sha256']}"
     return None
 
 
@@ -134,6 +153,7 @@ def main():
     parser.add_argument("--check-offsets", action="store_true", help="also require 'offset <n>' in error output")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds allowed per vector")
     parser.add_argument("--level-decoder", help="command template with {in}, {out} and {vertices}")
+    parser.add_argument("--region-decoder", help="command template with {in}, {out} and {region}")
     parser.add_argument("--profile", action="append", choices=("grid", "mesh", "tet"),
                         help="run only this profile's vectors (and those of no profile)")
     parser.add_argument("--clause", action="append",
@@ -185,6 +205,8 @@ def main():
                             problem = f"output sha256 {digest}, expected {vector['sha256']}"
                         elif args.level_decoder:
                             problem = check_levels(args, vector, path, out)
+                        if problem is None and args.region_decoder:
+                            problem = check_regions(args, vector, path, out)
             else:
                 code = "E%d" % vector["error"]
                 if run.returncode == 0:

@@ -24,6 +24,7 @@ for t in "${targets[@]}"; do
       -artifact_prefix="$findings/$t-" -print_final_stats=1 \
       "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
       "$here/../conformance/vectors/coded_valid" "$here/../conformance/vectors/coded_invalid" \
+      "$here/../conformance/vectors/tiled_valid" "$here/../conformance/vectors/tiled_invalid" \
       "$here/corpus" "$here/corpus_mesh" "$here/corpus_pt" "$here/corpus_tet" "$here/corpus_grid" "$here/corpus_stream" >"$scratch/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
     tail -40 "$scratch/$t.log"

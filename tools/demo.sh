@@ -206,6 +206,8 @@ if [ -f "$tif" ] && [ -x "$(command -v gdalinfo)" ] && [ -d "$root/build/gdalplu
   "$mrsv" decode --quiet --levels 2 "$out/tujunga.mrsv" "$out/tujunga_levels2.tif"
   echo "  demo/out/tujunga_levels2.tif (gdalinfo): $(gdalinfo "$out/tujunga_levels2.tif" | grep -E "^Size is|^Pixel Size" | tr '\n' ' ')"
   echo "  the driver plugin: $(GDAL_DRIVER_PATH="$root/build/gdalplugins" gdalinfo "$out/tujunga.mrsv" | grep -E "^Driver|Overviews" | sed 's/^ *//' | tr '\n' ' ')"
+  GDAL_DRIVER_PATH="$root/build/gdalplugins" gdal_translate -q -of MRSV -co MAX_ERROR=1 -co PROGRESSIVE=YES "$out/tujunga.tif" "$out/tujunga_gdal.mrsv"
+  echo "  gdal_translate -of MRSV -co MAX_ERROR=1 -co PROGRESSIVE=YES: $(cmp -s "$out/tujunga.mrsv" "$out/tujunga_gdal.mrsv" && echo "the same bytes as mrsv encode's" || echo "DIFFERENT bytes from mrsv encode's")"
   PYTHONPATH=$root/build/python /usr/bin/python3 - "$out/tujunga.mrsv" <<'PY' | sed 's/^/  /'
 import sys, mrsv
 a, info = mrsv.decode(sys.argv[1], levels=1)
@@ -214,6 +216,24 @@ print("python: mrsv.decode(levels=1) -> numpy %s %s, crs %s, error bound %g"
 PY
 else
   echo "  (skipped: needs ../shared/data, gdal-bin and a build with GDAL; tools/setup.sh installs them)"
+fi
+
+echo
+echo "== 11. tiles (spec 11): a terrain in 256 x 256 tiles, a window decoded from the tiles it meets =="
+rainier=$root/../shared/data/terrain/srtm3_N46W122_mt_rainier_1201x1201_int16le.raw.zst
+if [ -f "$rainier" ]; then
+  zstd -dqf "$rainier" -o "$out/rainier.raw"
+  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 \
+    "$out/rainier.raw" "$out/rainier_tiled.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
+  "$mrsv" info "$out/rainier_tiled.mrsv" | grep "^content" | sed 's/^/  /'
+  "$mrsv" decode --region 400,300,656,556 "$out/rainier_tiled.mrsv" "$out/rainier_window.nrrd" 2>&1 |
+    sed "s|$out/|demo/out/|; s/^/  /"
+  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 --out-of-core --quiet \
+    "$out/rainier.raw" "$out/rainier_ooc.mrsv"
+  cmp -s "$out/rainier_tiled.mrsv" "$out/rainier_ooc.mrsv" &&
+    echo "  out of core (a row of tiles in memory at a time): the same bytes"
+else
+  echo "  (skipped: needs ../shared/data)"
 fi
 
 {

@@ -17,6 +17,12 @@ packages=(
   python3-matplotlib                        # the section 7 pictures (tools/experiments, experiments_section7_quick)
   python3-pybind11 python3-numpy python3-pytest  # the Python module (python/) and its tests
   libgdal-dev gdal-bin python3-gdal        # GeoTIFF and other rasters (MRSV_GDAL); gdalinfo, gdal_translate in the tests
+  python3-rasterio                         # the GDAL driver plugin's test through rasterio
+  libhdf5-dev python3-h5py hdf5-tools     # the HDF5 filter plugin (MRSV_HDF5), its h5py test, h5dump
+  hdf5-filter-plugin-zfp-serial hdf5-filter-plugin  # ZFP, LZ4, BZip2 HDF5 filters: peers in tools/bench/hdf5_bench.py
+  libhdf5-openmpi-dev openmpi-bin          # parallel HDF5 for hdf5_filter_mpi_test (beside libhdf5-dev: the plugin
+                                           # for h5py still builds against the serial HDF5, found through h5cc)
+  libopenmpi-dev openmpi-bin                # mrsv-mpi (MRSV_MPI): tiled grids coded by MPI ranks, mpi_tests
 )
 
 missing=()

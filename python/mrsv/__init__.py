@@ -8,6 +8,7 @@ has x varying fastest, the format's own sample order; values that list axes
     samples, info = mrsv.decode("dem.mrsv", levels=1)
     mrsv.encode(samples, "copy.mrsv", max_error=2, spacing=(30, 30))
     mrsv.check("copy.mrsv")
+    h5file.create_dataset("dem", data=dem, chunks=(256, 256), **mrsv.hdf5_filter("max_error", 1))
     pm = mrsv.ProgressiveMesh("bunny.mrsv"); pm.level = 100; pm.vertices, pm.faces
     d = mrsv.StreamDecoder(); d.feed(piece); ...; d.finish(); d.samples()
 
@@ -30,9 +31,11 @@ from ._mrsv import (
     read_tets,
     tetrahedralize,
 )
+from .hdf5 import HDF5_FILTER_ID, hdf5_filter
 
 __all__ = [
     "Error",
+    "HDF5_FILTER_ID",
     "ProgressiveMesh",
     "ProgressiveTetMesh",
     "StreamDecoder",
@@ -41,6 +44,7 @@ __all__ = [
     "encode",
     "encode_mesh",
     "encode_tets",
+    "hdf5_filter",
     "mesh_grid",
     "read_mesh",
     "read_tets",

@@ -258,5 +258,31 @@ expect 2 "$mrsv" mesh --max-error 8 --method quadtree "$work/g.mrsv" "$work/x.vt
 expect 2 "$mrsv" mesh --triangles 50 "$work/g.mrsv" "$work/x.vtu"; stderr_has "use --tets"; one_line_stderr
 expect 2 "$mrsv" mesh --max-error 8 "$work/g.mrsv" "$work/x.obj"; stderr_has "tet mesh"; one_line_stderr
 
+# Tiled grids (spec 11): tiles, regions, threads, out of core, one-line errors.
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --tile 48,40 --max-error 2 --meta spacing=30,-30 \
+  --meta origin=1000,2000 "$crop" "$work/t.mrsv"
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --tile 48,40 --max-error 2 --meta spacing=30,-30 \
+  --meta origin=1000,2000 --out-of-core --threads 1 "$crop" "$work/t2.mrsv"
+if cmp -s "$work/t.mrsv" "$work/t2.mrsv"; then ok; else bad "out-of-core and threads change the stream"; fi
+expect 0 "$mrsv" info "$work/t.mrsv"; stdout_has "tiled 48x40 (12 tiles"; stdout_has "TIDX"
+expect 0 "$mrsv" check "$work/t.mrsv"; stdout_has "ok: grid"
+expect 0 "$mrsv" decode "$work/t.mrsv" "$work/t.raw"
+expect 0 "$mrsv" decode --region 10,20,60,90 "$work/t.mrsv" "$work/tr.nrrd"; stderr_has "region 50x70x1"; stderr_has "bytes read"
+expect 0 "$mrsv" decode --quiet --region 10,20,60,90 --levels 1 "$work/t.mrsv" "$work/tr1.nrrd"
+grep -q "sizes: 25 35" "$work/tr1.nrrd" && ok || bad "a region at --levels 1 is not every second sample"
+expect 2 "$mrsv" decode --region 10,20,600,90 "$work/t.mrsv" "$work/x.raw"; stderr_has "beyond the grid"; one_line_stderr
+expect 2 "$mrsv" decode --region 10,20,5 "$work/t.mrsv" "$work/x.raw"; stderr_has "give X0,X1"; one_line_stderr
+expect 2 "$mrsv" decode --region 10,20,10,30 "$work/t.mrsv" "$work/x.raw"; stderr_has "empty"; one_line_stderr
+expect 2 "$mrsv" decode --threads 0 "$work/t.mrsv" "$work/x.raw"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 0 "$crop" "$work/x.mrsv"; stderr_has "--tile"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 8,8,8 "$crop" "$work/x.mrsv"; stderr_has "3 sizes"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --coding stored "$crop" "$work/x.mrsv"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --out-of-core "$crop" "$work/x.mrsv"; stderr_has "needs --tile"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --out-of-core --bits-per-sample 1 "$crop" "$work/x.mrsv"; one_line_stderr
+expect 1 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --step 4 --roi box:1,1,9,9 "$crop" "$work/x.mrsv"; stderr_has "region of interest"; one_line_stderr
+expect 3 "$mrsv" encode --dims 129,128 --type int16 --tile 64 --out-of-core "$crop" "$work/x.mrsv"; stderr_has "bytes"; one_line_stderr
+expect 1 "$mrsv" decode --region 1,1,9,9 "$vectors/tiled_invalid/index_length_disagrees.mrsv" "$work/x.raw"; stderr_has "E208"; one_line_stderr
+if [ ! -e "$work/x.mrsv" ] && [ ! -e "$work/x.raw" ]; then ok; else bad "a failed tiled command left an output"; fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

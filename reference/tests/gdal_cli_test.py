@@ -9,7 +9,9 @@ Bad rasters must give one-line errors naming the file and leave no output.
 
 With the directory of the driver plugin gdal_MRSV.so, the same tools also
 open .mrsv files through it (GDAL_DRIVER_PATH): samples, georeferencing and
-overviews (the wavelet levels, as mrsv decode --levels K gives them).
+overviews (the wavelet levels, as mrsv decode --levels K gives them); and
+gdal_translate -of MRSV writes them: the bytes mrsv encode writes with the
+same options, refused options named with their rule.
 
 Usage: gdal_cli_test.py PATH/TO/mrsv SHARED_DATA_DIR ON|OFF [PLUGIN_DIR]
 (ON|OFF is the build's MRSV_GDAL; OFF exits 77, which ctest reports as
@@ -239,6 +241,76 @@ with tempfile.TemporaryDirectory() as work:
             g.write(b)
         r = run("gdalinfo", damaged, expect=1, env=env)
         check("damaged.mrsv" in r.stderr and "E1" in r.stderr, f"plugin: damaged stream: {r.stderr.strip()[:200]}")
+
+        # Writing through the plugin (CreateCopy): gdal_translate -of MRSV
+        # gives the bytes mrsv encode gives with the same options, and the
+        # round trips give the original's samples and georeferencing.
+        listed = run("gdalinfo", "--format", "MRSV", env=env).stdout
+        for option in ("LOSSLESS", "MAX_ERROR", "RATE", "PSNR", "WAVELET", "LEVELS", "PROGRESSIVE"):
+            check(f'name="{option}"' in listed, f"gdalinfo --format MRSV does not list {option}")
+        via = os.path.join(work, "via_gdal.mrsv")
+        r = run("gdal_translate", "-of", "MRSV", tujunga, via, env=env)
+        check("100 - done" in r.stdout, f"gdal_translate -of MRSV shows no progress: {r.stdout!r}")
+        with open(via, "rb") as f1, open(os.path.join(work, "big_tujunga_srtm1_30m_utm11.mrsv"), "rb") as f2:
+            check(f1.read() == f2.read(), "gdal_translate -of MRSV (lossless) differs from mrsv encode")
+        run(MRSV, "decode", "--quiet", via, via + ".tif")
+        run("gdal_translate", "-q", via, via + "_gdal.tif", env=env)
+        a = info(tujunga)
+        for out in (via + ".tif", via + "_gdal.tif"):
+            b = info(out)
+            check(samples(out, work, "h") == samples(tujunga, work, "h"), f"{out}: samples differ")
+            check(close(b["geoTransform"], a["geoTransform"]) and epsg(b) == epsg(a) and
+                  b["bands"][0].get("noDataValue") == a["bands"][0].get("noDataValue"),
+                  f"{out}: georeferencing differs")
+        # Creation options: mrsv encode's bytes with its options (on the
+        # 256 x 128 window, to be fast), and within MAX_ERROR of the samples.
+        for co, cli in ((["MAX_ERROR=3"], ["--max-error", "3"]),
+                        (["WAVELET=BSPLINE", "ORDER=3", "LEVELS=3", "RATE=2"],
+                         ["--order", "3", "--levels", "3", "--bits-per-sample", "2"]),
+                        (["PSNR=60", "PROGRESSIVE=YES", "ENTROPY=BASELINE"],
+                         ["--psnr", "60", "--progressive", "--entropy", "baseline"]),
+                        (["CODING=STORED"], ["--coding", "stored"])):
+            name = os.path.join(work, "co_" + "_".join(co).replace("=", "") + ".mrsv")
+            run("gdal_translate", "-q", "-of", "MRSV", *[x for c in co for x in ("-co", c)], vrt, name, env=env)
+            run(MRSV, "encode", "--quiet", *cli, vrt, name + ".cli.mrsv")
+            with open(name, "rb") as f1, open(name + ".cli.mrsv", "rb") as f2:
+                check(f1.read() == f2.read(), f"-co {' -co '.join(co)} differs from mrsv encode {' '.join(cli)}")
+        e3 = os.path.join(work, "co_MAX_ERROR3.mrsv")
+        run("gdal_translate", "-q", e3, e3 + ".tif", env=env)
+        orig, lossy = samples(vrt, work, "h"), samples(e3 + ".tif", work, "h")
+        worst = max(abs(x - y) for x, y in zip(orig, lossy) if x != 32767)
+        check(worst <= 3 and all((x == 32767) == (y == 32767) for x, y in zip(orig, lossy)),
+              f"-co MAX_ERROR=3: worst {worst} or no-data moved")
+        # PixelIsPoint stays PixelIsPoint, with mrsv encode's meta chunk
+        # (stored samples: the georeferencing does not depend on the coding).
+        run("gdal_translate", "-q", "-of", "MRSV", "-co", "CODING=STORED", point, point + ".gdal.mrsv", env=env)
+        # (The wavelet coder adds its error_* entries.)
+        georef = {k: v for k, v in meta(point + ".mrsv").items() if not k.startswith("error_")}
+        check(meta(point + ".gdal.mrsv") == georef and georef.get("area_or_point") == "point",
+              f"PixelIsPoint: meta {meta(point + '.gdal.mrsv')} != mrsv encode's {georef}")
+        # Bad options and rasters: a one-line GDAL error naming the option and
+        # the rule; nothing written.
+        for co, words in ((["MAX_ERROR=-1"], "MAX_ERROR=-1: must be a number from 0"),
+                          (["RATE=2", "PSNR=40"], "creation options RATE, PSNR: give at most one of"),
+                          (["ORDER=3", "WAVELET=CDF97"], "ORDER=3: is for WAVELET=BSPLINE"),
+                          (["BOUND_ROUTE=PREDICTIVE", "PROGRESSIVE=YES"], "not progressive"),
+                          (["CODING=STORED", "RATE=1"], "CODING=STORED takes no")):
+            bad = os.path.join(work, "bad.mrsv")
+            r = run("gdal_translate", "-q", "-of", "MRSV", *[x for c in co for x in ("-co", c)], vrt, bad,
+                    expect=1, env=env)
+            check(words in r.stderr and "bad.mrsv" in r.stderr, f"-co {co}: {r.stderr.strip()[:200]}")
+            check(not os.path.exists(bad), f"-co {co}: an output was written")
+        r = run("gdal_translate", "-q", "-of", "MRSV", "-ot", "UInt32", vrt, vrt + ".u32.mrsv", expect=1, env=env)
+        check("u32.mrsv: the source raster: sample type UInt32" in r.stderr and not os.path.exists(vrt + ".u32.mrsv"),
+              f"UInt32 source: {r.stderr.strip()[:200]}")
+        r = run("gdal_translate", "-q", "-of", "MRSV", multi, multi + ".gdal.mrsv", expect=1, env=env)
+        check("gdal_translate -b N" in r.stderr and not os.path.exists(multi + ".gdal.mrsv"),
+              f"multi-band source: {r.stderr.strip()[:200]}")
+        run("gdal_translate", "-q", "-of", "MRSV", "-co", "CODING=STORED", "-b", "2", multi, multi + ".gdal.mrsv", env=env)
+        run(MRSV, "decode", "--quiet", multi + ".gdal.mrsv", multi + "_gdal_rt.tif")
+        check(samples(multi + "_gdal_rt.tif", work, "h") == samples(tujunga, work, "h"), "-b 2: samples differ")
+        check(not [n for n in os.listdir(work) if "mrsv-tmp" in n or n.endswith(".mrsv.aux.xml")],
+              f"temporary or .aux.xml files left: {os.listdir(work)}")
 
 print(f"gdal_cli_test: {len(failures)} failures")
 sys.exit(1 if failures else 0)

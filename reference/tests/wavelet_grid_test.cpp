@@ -2,6 +2,7 @@
 // hold exactly, rate and PSNR targets are met, prefixes refine, voids survive.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -274,6 +275,52 @@ TEST(WaveletGrid, LastLevelBySlicesGivesTheSamplesOfTheWholeArray) {
   std::vector<uint8_t> stream;
   ASSERT_TRUE(encodeWaveletGrid(h, samples, Metadata{}, options, &stream, nullptr).ok());
   same(stream, "int32 noise");
+}
+
+// reducedResolution() (the GDAL driver's overviews) from the headers alone:
+// the decode's output size, and the bands it names are all the synthesis
+// reads: the prefix before the next band decodes to the same samples.
+TEST(WaveletGrid, ReducedResolutionNeedsOnlyItsBands) {
+  int checked = 0;
+  for (const TestGrid& g : realWindows()) {
+    for (int order : {2, kWaveletOrderCdf97}) {
+      WaveletEncodeOptions options;
+      options.order = order;
+      options.max_error = 3;
+      options.progressive = true;
+      std::vector<uint8_t> stream;
+      ASSERT_TRUE(encodeWaveletGrid(g.header, g.samples, Metadata{}, options, &stream, nullptr).ok());
+      Container c;
+      ASSERT_TRUE(readContainer(stream.data(), stream.size(), ContainerOptions{}, &c).ok());
+      std::vector<uint64_t> bands;
+      for (const ChunkView& chunk : c.chunks)
+        if (chunk.chunk_type == kChunkBand) bands.push_back(chunk.offset);
+      const DecodedGrid full = decode(stream);
+      const int levels = std::max({full.wavelet.levels[0], full.wavelet.levels[1], full.wavelet.levels[2]});
+      for (int reduce = 0; reduce <= levels + 1; ++reduce) {
+        ReducedResolution r;
+        ASSERT_TRUE(reducedResolution(full.header, full.wavelet, reduce, &r));
+        const DecodedGrid whole = decode(stream, reduce);
+        for (int a = 0; a < 3; ++a)
+          EXPECT_EQ(r.size[a], whole.output_size[a]) << g.name << " order " << order << " reduce " << reduce;
+        ASSERT_GE(r.bands_needed, 1u);
+        ASSERT_LE(r.bands_needed, bands.size());
+        EXPECT_EQ(r.bands_needed == bands.size(), reduce == 0) << g.name << " reduce " << reduce;
+        const size_t prefix = r.bands_needed < bands.size() ? bands[r.bands_needed] : stream.size();
+        DecodedGrid part;
+        DecodeOptions o;
+        o.reduce_levels = reduce;
+        ASSERT_TRUE(decodeGrid(stream.data(), prefix, o, &part).ok());
+        EXPECT_TRUE(part.samples == whole.samples) << g.name << " order " << order << " reduce " << reduce;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 50);
+  GridHeader stored;
+  stored.num_dims = 2;
+  ReducedResolution r;
+  EXPECT_FALSE(reducedResolution(stored, WaveletHeader{}, 1, &r));
 }
 
 TEST(WaveletGrid, FloatSamplesAndRefusals) {

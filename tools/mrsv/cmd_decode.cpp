@@ -3,6 +3,7 @@
 #include <climits>
 #include <cstdio>
 #include <functional>
+#include <thread>
 #include <utility>
 
 #include "cli.h"
@@ -55,6 +56,12 @@ const char kHelp[] =
     "                        whose SHA-256 the conformance suite compares\n"
     "  --levels K            reduced resolution: stop the wavelet synthesis K levels above\n"
     "                        the finest (about 1/2^K of the samples along each axis)\n"
+    "  --region X0,Y0[,Z0],X1,Y1[,Z1]\n"
+    "                        decode only the box X0 <= x < X1, Y0 <= y < Y1 (Z0 <= z < Z1) of\n"
+    "                        samples; from a tiled stream (encode --tile) only the tiles the\n"
+    "                        box touches are read (spec 11.5). With --levels K, the samples\n"
+    "                        of the box on the lattice of every 2^K-th sample\n"
+    "  --threads N           tiles decoded at once (default: the number of cores)\n"
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived: the complete chunks among them are decoded\n"
     "  --levels-out PATTERN  also write each level as soon as its bytes have arrived:\n"
@@ -105,13 +112,39 @@ Error decodeInput(StreamInput* input, const std::vector<uint8_t>& head, StreamDe
   return e;
 }
 
+// "X0,Y0[,Z0],X1,Y1[,Z1]": a half-open box of samples.
+bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
+  std::vector<uint64_t> v;
+  for (size_t start = 0; start <= text.size();) {
+    size_t comma = std::min(text.find(',', start), text.size());
+    uint64_t x = 0;
+    if (!parseUint64(text.substr(start, comma - start), &x) || x > kMaxGridAxis) {
+      *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
+               std::to_string(kMaxGridAxis);
+      return false;
+    }
+    v.push_back(x);
+    start = comma + 1;
+  }
+  if (v.size() != 2 && v.size() != 4 && v.size() != 6) {
+    *error = "--region '" + text + "': give X0,X1 or X0,Y0,X1,Y1 or X0,Y0,Z0,X1,Y1,Z1";
+    return false;
+  }
+  const size_t dims = v.size() / 2;
+  for (size_t a = 0; a < dims; ++a) {
+    region->lo[a] = static_cast<uint32_t>(v[a]);
+    region->hi[a] = static_cast<uint32_t>(v[dims + a]);
+  }
+  return true;
+}
+
 }  // namespace
 
 int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "levels-out", "faces", "tets", "vertices", "fraction"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "levels-out", "faces", "tets", "vertices", "fraction", "region", "threads"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -138,10 +171,32 @@ int runDecode(int argc, char** argv) {
   if (args.has("levels-out") && levels_out.empty()) return fail(cmd, "--levels-out needs a PATTERN", kExitUsage);
   if (in != "-" && isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
   const bool quiet = args.flag("quiet");
+  GridRegion region;
+  const bool by_region = args.has("region");
+  if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (args.has("threads")) {
+    uint64_t n = 0;
+    if (!parseUint64(args.value("threads"), &n) || n < 1 || n > 1024)
+      return fail(cmd, "--threads must be a whole number from 1 to 1024", kExitUsage);
+    threads = static_cast<int>(n);
+  }
+  if (by_region && !args.has("bytes") && in != "-")
+    return runRegionDecode(args, in, out, region, threads, endian, levels);
 
   Progress progress("decode", quiet);
   StreamInput input;
   if (!input.open(in, byte_limit, &error)) return fail(cmd, error, kExitIo);
+  if (by_region) {  // a prefix (--bytes) or standard input: a region of the bytes in memory
+    std::vector<uint8_t> bytes, piece;
+    for (;;) {
+      if (!input.next(&piece, &error)) return fail(cmd, error, kExitIo);
+      if (piece.empty()) break;
+      bytes.insert(bytes.end(), piece.begin(), piece.end());
+    }
+    MemoryByteSource source(bytes.data(), bytes.size());
+    return runRegionDecode(args, input.name(), out, region, threads, endian, levels, &source);
+  }
   // The content header's type (bytes 12 to 15) says which decoder to run.
   std::vector<uint8_t> head, piece;
   while (head.size() < kFileHeaderSize + 4) {
@@ -151,6 +206,7 @@ int runDecode(int argc, char** argv) {
   }
   DecodeOptions options;
   options.reduce_levels = static_cast<int>(levels);
+  options.threads = threads;
 
   if (isProgressiveMeshStream(head.data(), head.size())) {
     const MeshDecodeFn decode = [&](const DecodeOptions& o, DecodedMesh* decoded) {
@@ -250,8 +306,11 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, input.name() + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    const Metadata metadata =
-        reducedResolutionMetadata(grid.metadata, grid.header, grid.wavelet.levels, options.reduce_levels);
+    // A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6).
+    static const uint8_t kEveryAxis[3] = {16, 16, 16};
+    const Metadata metadata = reducedResolutionMetadata(
+        grid.metadata, grid.header,
+        grid.header.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels, options.reduce_levels);
     if (!encodeGridOutput(out, grid.header, metadata, grid.output_size, std::move(grid.samples),
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <thread>
 #include <vector>
 
 #include "cli.h"
@@ -83,6 +85,18 @@ const char kHelp[] =
     "                        spatial_units, spacing, origin, crs, provenance, description\n"
     "\n"
     "Other:\n"
+    "  --tile N[,N[,N]]      cut the grid into tiles of N samples per axis (one N for every\n"
+    "                        axis, or one per axis; spec 11): each tile is coded and decoded\n"
+    "                        on its own, and 'mrsv decode --region' reads only the tiles a\n"
+    "                        box touches. 256 (2-D) or 64 (3-D) is a good size. A rate or PSNR\n"
+    "                        target holds for the whole grid (one step for all tiles), an\n"
+    "                        error bound for every sample. Not with --roi\n"
+    "  --out-of-core         with --tile and a raw IN: read IN a row of tiles at a time and\n"
+    "                        keep the coded tiles in a temporary file, so that the memory is\n"
+    "                        a row of tiles, not the grid (lossless, --max-error or --step;\n"
+    "                        the same stream as without it)\n"
+    "  --threads N           tiles coded at once (default: the number of cores); the output\n"
+    "                        is the same whatever N\n"
     "  --quiet               no progress output\n"
     "  --help                this text\n"
     "\n"
@@ -191,8 +205,8 @@ int runEncode(int argc, char** argv) {
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "band", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy",
-                    "wavelet", "prediction"},
-                   {"quiet", "help", "lossless", "progressive"},
+                    "wavelet", "prediction", "tile", "threads"},
+                   {"quiet", "help", "lossless", "progressive", "out-of-core"},
                    {"meta"}},
                   &error))
     return fail(cmd, error + " (see 'mrsv encode --help')", kExitUsage);
@@ -323,9 +337,66 @@ int runEncode(int argc, char** argv) {
   if (coding == "stored" && (args.has("order") || args.has("levels") || args.has("max-error") ||
                              args.has("bits-per-sample") || args.has("psnr") || args.has("step")))
     return fail(cmd, "--coding stored takes no rate, quality or wavelet option", kExitUsage);
+  std::vector<uint32_t> tile_sizes;
+  if (args.has("tile")) {
+    if (coding == "stored") return fail(cmd, "--tile needs --coding wavelet", kExitUsage);
+    const std::string& text = args.value("tile");
+    for (size_t start = 0; start <= text.size();) {
+      size_t comma = std::min(text.find(',', start), text.size());
+      uint64_t v = 0;
+      if (!parseUint64(text.substr(start, comma - start), &v) || v < 1 || v > kMaxGridAxis)
+        return fail(cmd, "--tile '" + text + "': each size must be a whole number from 1 to " +
+                             std::to_string(kMaxGridAxis), kExitUsage);
+      tile_sizes.push_back(static_cast<uint32_t>(v));
+      start = comma + 1;
+    }
+    if (tile_sizes.size() > 3) return fail(cmd, "--tile takes at most 3 sizes", kExitUsage);
+  }
+  TiledEncodeOptions tiled;
+  tiled.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (args.has("threads")) {
+    uint64_t threads = 0;
+    if (!parseUint64(args.value("threads"), &threads) || threads < 1 || threads > 1024)
+      return fail(cmd, "--threads must be a whole number from 1 to 1024", kExitUsage);
+    tiled.threads = static_cast<int>(threads);
+  }
   Metadata metadata;
   if (!parseMetaOptions(args, &metadata, &error)) return fail(cmd, error, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+  if (args.flag("out-of-core")) {
+    if (tile_sizes.empty() || !raw.has_layout)
+      return fail(cmd, "--out-of-core needs --tile and a headerless raw IN (--dims, --type)", kExitUsage);
+    if (args.has("bits-per-sample") || args.has("psnr") || args.has("roi"))
+      return fail(cmd, "--out-of-core takes --lossless, --max-error or --step (not --bits-per-sample, --psnr "
+                       "or --roi in this version)", kExitUsage);
+    GridHeader header = raw.header;
+    if (args.has("nodata")) {
+      if (!parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))
+        return fail(cmd, error, kExitUsage);
+      header.grid_flags |= kGridFlagHasNodata;
+    }
+    for (int a = 0; a < 3; ++a)
+      tiled.tile_size[a] = a >= header.num_dims ? 1 : tile_sizes[std::min<size_t>(a, tile_sizes.size() - 1)];
+    std::unique_ptr<GridBoxReader> reader =
+        openRawBoxReader(in, header, raw.big_endian ? Endian::kBig : Endian::kLittle, &error);
+    if (!reader) return fail(cmd, error, kExitIo);
+    Progress progress("encode", args.flag("quiet"));
+    tiled.progress = [&](uint64_t done, uint64_t total) {
+      progress.update(static_cast<double>(done) / static_cast<double>(total));
+    };
+    AtomicFileWriter sink;
+    if (!sink.open(out, &error)) return fail(cmd, out + ": " + error, kExitIo);
+    WaveletEncodeReport report;
+    if (Error e = encodeTiledGridFromReader(header, *reader, metadata, wavelet, tiled, sink, &report); !e.ok())
+      return fail(cmd, in + ": " + e.field + ": " + e.message,
+                  e.status == Status::kIoError ? kExitIo : kExitInvalidData);
+    if (!sink.commit(&error)) return fail(cmd, out + ": " + error, kExitIo);
+    if (!args.flag("quiet"))
+      std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g (out of core)\n",
+                   out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                   std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(), report.max_abs_error);
+    return kExitOk;
+  }
 
   Progress progress("encode", args.flag("quiet"));
   GridInput input;
@@ -349,12 +420,33 @@ int runEncode(int argc, char** argv) {
   metadata = merged;
   std::vector<uint8_t> stream;
   WaveletEncodeReport report;
-  Error e = coding == "stored" ? encodeStoredGrid(header, samples, metadata, &stream)
-                               : encodeWaveletGrid(header, samples, metadata, wavelet, &stream, &report);
+  Error e;
+  if (coding == "stored") {
+    e = encodeStoredGrid(header, samples, metadata, &stream);
+  } else if (!tile_sizes.empty()) {
+    if (tile_sizes.size() != 1 && tile_sizes.size() != header.num_dims)
+      return fail(cmd, "--tile gives " + std::to_string(tile_sizes.size()) + " sizes for a grid of " +
+                           std::to_string(header.num_dims) + " dimensions (give 1 or " +
+                           std::to_string(header.num_dims) + ")", kExitUsage);
+    for (int a = 0; a < 3; ++a)
+      tiled.tile_size[a] = a >= header.num_dims ? 1 : tile_sizes[std::min<size_t>(a, tile_sizes.size() - 1)];
+    tiled.progress = [&](uint64_t done, uint64_t total) {
+      progress.update(0.2 + 0.7 * static_cast<double>(done) / static_cast<double>(total));
+    };
+    e = encodeTiledGrid(header, samples, metadata, wavelet, tiled, &stream, &report);
+  } else {
+    e = encodeWaveletGrid(header, samples, metadata, wavelet, &stream, &report);
+  }
   if (!e.ok()) return fail(cmd, in + ": " + e.field + ": " + e.message, kExitInvalidData);
   progress.update(0.9);
   if (!writeFileAtomically(out, stream, &error)) return fail(cmd, out + ": " + error, kExitIo);
-  if (coding == "wavelet" && !args.flag("quiet")) {
+  if (coding == "wavelet" && !args.flag("quiet") && !tile_sizes.empty()) {
+    std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, tiled, "
+                         "up to %d levels per tile\n",
+                 out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                 std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(), report.max_abs_error,
+                 report.levels);
+  } else if (coding == "wavelet" && !args.flag("quiet")) {
     std::fprintf(stderr,
                  "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, "
                  "%s, %llu coefficients kept, L2 error %.6g (orthogonal estimate %.6g)\n",

@@ -47,6 +47,8 @@ std::string chunkRole(const ChunkType& type) {
   if (type == kChunkGridStored) return "stored samples";
   if (type == kChunkMeta) return "metadata";
   if (type == kChunkWaveletHeader) return "wavelet header";
+  if (type == kChunkTiling) return "tiling header";
+  if (type == kChunkTileIndex) return "tile index";
   if (type == kChunkNodataMask) return "no-data mask";
   if (type == kChunkBand) return "band (coarse to fine)";
   if (type == kChunkResidual) return "residual layer";
@@ -132,6 +134,12 @@ std::string summary(const DecodedGrid& grid) {
                   " " + sizeText(h);
   if (h.coding == GridCoding::kStored) {
     s += ", stored";
+  } else if (h.coding == GridCoding::kTiled) {
+    s += ", tiled " + std::to_string(grid.tile_size[0]);
+    for (int a = 1; a < h.num_dims; ++a) s += "x" + std::to_string(grid.tile_size[a]);
+    s += " (" + std::to_string(grid.tiles_total) + " tiles, " + std::to_string(grid.tiles_with_samples) +
+         " with samples), " + std::to_string(grid.bands_decoded) + "/" + std::to_string(grid.bands_total) +
+         " bands";
   } else {
     const WaveletHeader& w = grid.wavelet;
     s += (w.order == kWaveletOrderCdf97 ? std::string(", wavelet CDF 9/7")
@@ -155,7 +163,8 @@ InfoView gridView(const DecodedGrid& grid) {
                   "  \"grid\": {\"num_dims\": %u, \"sample_type\": \"%s\", \"size\": [%u, %u, %u], "
                   "\"coding\": \"%s\", \"bands\": [%u, %u]",
                   h.num_dims, sampleTypeName(h.sample_type), h.size_x, h.size_y, h.size_z,
-                  h.coding == GridCoding::kStored ? "stored" : "wavelet", grid.bands_decoded, grid.bands_total);
+                  h.coding == GridCoding::kStored ? "stored" : h.coding == GridCoding::kTiled ? "tiled" : "wavelet",
+                  grid.bands_decoded, grid.bands_total);
     v.json_content = buf;
     if (h.hasNodata()) v.json_content += ", \"nodata\": " + jsonString(nodataText(h));
     v.json_content += "},\n";

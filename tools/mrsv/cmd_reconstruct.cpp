@@ -152,6 +152,10 @@ int runMesh(int argc, char** argv) {
 
   // spec 8.7: the stages, less the K finest levels.
   std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size(), unsigned(levels));
+  if (stages.empty() && grid.header.coding == GridCoding::kTiled)
+    return fail(cmd, in + ": --levels is not defined for tiled grids in this version (spec 8.7 stages are the "
+                          "levels of one wavelet pyramid); mesh the whole grid or decode --levels first",
+                kExitUsage);
   if (stages.empty())
     return fail(cmd, in + ": --levels " + std::to_string(levels) + " leaves no complete level in the bytes read",
                 kExitInvalidData);

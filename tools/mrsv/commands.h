@@ -9,6 +9,8 @@
 #include "mrsv/grid.h"
 #include "mrsv/progressive_mesh.h"
 #include "mrsv/progressive_tet_mesh.h"
+#include "mrsv/raw_grid.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv::cli {
 
@@ -38,6 +40,12 @@ int runTetEncode(int argc, char** argv);
 using TetDecodeFn = std::function<Error(const DecodeOptions&, DecodedTetMesh*)>;
 int runTetDecode(const Args& args, const std::string& in, const std::string& out,
                  const TetDecodeFn& decode, const DecodeOptions& options);
+
+// mrsv decode --region (cmd_decode_region.cpp): a box of a grid, read through
+// the tile index when the stream is tiled. `source` null: IN is read by offset.
+int runRegionDecode(const Args& args, const std::string& in, const std::string& out,
+                    const GridRegion& region, int threads, Endian endian, uint64_t levels,
+                    ByteSource* source = nullptr);
 
 // mrsv compare of two tet meshes (cmd_compare_tets.cpp).
 bool isTetCompare(const Args& args);

@@ -1,6 +1,7 @@
 // mrsv: the MRSV command-line tool. One executable, one subcommand per job.
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 
 #include "cli.h"
@@ -68,8 +69,19 @@ int main(int argc, char** argv) {
                 mrsv::kVersionMajor, mrsv::kVersionMinor);
     return mrsv::cli::kExitOk;
   }
-  for (const Command& c : kCommands)
-    if (first == c.name) return c.run(argc - 2, argv + 2);
+  for (const Command& c : kCommands) {
+    if (first != c.name) continue;
+    // The library reports memory it cannot have as 901 where it allocates by
+    // a stream's word; anywhere else (an input larger than memory, a limit set
+    // by ulimit) the command ends with one line, its temporary outputs removed
+    // by their destructors, instead of an abort.
+    try {
+      return c.run(argc - 2, argv + 2);
+    } catch (const std::bad_alloc&) {
+      return mrsv::cli::fail(c.name, "out of memory (for grids larger than memory: encode --tile --out-of-core, "
+                                     "decode --region)", mrsv::cli::kExitIo);
+    }
+  }
   return mrsv::cli::fail("", "unknown command '" + first + "' (see 'mrsv --help')",
                          mrsv::cli::kExitUsage);
 }

@@ -47,6 +47,8 @@ constexpr ChunkType kChunkSplits{{'P', 'S', 'P', 'L'}};
 constexpr ChunkType kChunkTetHeader{{'T', 'H', 'D', 'R'}};
 constexpr ChunkType kChunkTetBase{{'T', 'B', 'A', 'S'}};
 constexpr ChunkType kChunkTetSplits{{'T', 'S', 'P', 'L'}};
+constexpr ChunkType kChunkTiling{{'T', 'I', 'N', 'F'}};     // spec 11.2
+constexpr ChunkType kChunkTileIndex{{'T', 'I', 'D', 'X'}};  // spec 11.3
 
 // True for the critical types this decoder implements.
 bool isKnownCriticalChunk(const ChunkType& type);

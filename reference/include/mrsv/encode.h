@@ -2,11 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "mrsv/grid.h"
 #include "mrsv/metadata.h"
 #include "mrsv/status.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv {
 
@@ -64,6 +66,7 @@ struct WaveletEncodeReport {
   double bits_per_sample = 0;
   double psnr = 0;            // measured by decoding the stream (infinity when exact)
   double max_abs_error = 0;   // measured by decoding the stream
+  double sum_squared_error = 0;  // over the valid samples, measured by decoding the stream
   double base_step = 0;       // in normalised units
   uint32_t residual_step = 0; // 0 without a residual layer
   int iterations = 0;         // encodes tried by the rate control
@@ -82,5 +85,35 @@ struct WaveletEncodeReport {
 Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
                         const Metadata& metadata, const WaveletEncodeOptions& options,
                         std::vector<uint8_t>* out, WaveletEncodeReport* report);
+
+// spec: 11.7 (informative) options of tiled grids (GHDR coding 2).
+struct TiledEncodeOptions {
+  // Samples per tile along x, y, z (axes beyond num_dims take 1).
+  uint32_t tile_size[3] = {256, 256, 64};
+  // Tiles coded at once; the stream is the same whatever the count.
+  int threads = 1;
+  // Called after each tile is coded (under a lock, from any thread); a rate or
+  // PSNR target codes every tile once per step tried.
+  std::function<void(uint64_t done, uint64_t total)> progress;
+};
+
+// Encodes a grid as tiles (GHDR coding 2, TINF, TIDX, the tiles' WHDR, GMSK,
+// GBND and GRES chunks round by round). Each tile is coded as
+// encodeWaveletGrid() codes a grid, with `options`; a rate or PSNR target is
+// met for the whole grid with one quantiser step for all tiles, an error
+// bound on every sample. Regions of interest are refused.
+Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samples,
+                      const Metadata& metadata, const WaveletEncodeOptions& options,
+                      const TiledEncodeOptions& tiled, std::vector<uint8_t>* out,
+                      WaveletEncodeReport* report);
+
+// encodeTiledGrid() for a grid read a row of tiles at a time from `reader`,
+// the coded tiles kept in a temporary file until the stream is written to
+// `out`: memory is bounded by a row of tiles, the tiles in flight and the
+// index, not by the grid. Lossless, error-bound, step and keep targets only
+// (a rate or PSNR target would read the grid once per step tried).
+Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                                const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
+                                ByteSink& out, WaveletEncodeReport* report);
 
 }  // namespace mrsv

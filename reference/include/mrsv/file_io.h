@@ -2,8 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "mrsv/grid.h"
+#include "mrsv/raw_grid.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv {
 
@@ -14,6 +19,27 @@ bool readWholeFile(const std::string& path, std::vector<uint8_t>* out, std::stri
 // over `path`, so readers see either the old file or the whole new one.
 bool writeFileAtomically(const std::string& path, const std::vector<uint8_t>& bytes,
                          std::string* error);
+
+// A file written piece by piece under a temporary name beside `path` and
+// renamed over it by commit(); without commit() (an error on the way) the
+// temporary file is removed, so no half-written output is ever left.
+class AtomicFileWriter : public ByteSink {
+ public:
+  ~AtomicFileWriter() override;
+  bool open(const std::string& path, std::string* error);
+  bool write(const uint8_t* data, size_t size) override;
+  bool commit(std::string* error);
+
+ private:
+  std::string path_, temp_, error_;
+  int fd_ = -1;
+};
+
+// The samples of a headerless raw grid file (x fastest, then y, then z), read
+// a box at a time with pread. Null with `error` set when the file cannot be
+// opened or its size is not the grid's.
+std::unique_ptr<GridBoxReader> openRawBoxReader(const std::string& path, const GridHeader& header, Endian endian,
+                                                std::string* error);
 
 // True when both paths name the same existing file (also through links).
 bool isSameFile(const std::string& a, const std::string& b);

@@ -26,11 +26,15 @@ bool isValidSampleType(uint8_t value);
 size_t sampleSize(SampleType type);
 const char* sampleTypeName(SampleType type);  // "uint8", "int16", ...
 bool parseSampleType(const std::string& name, SampleType* out);
+// The value of one little-endian sample (sampleSize(type) bytes at p), exact
+// in a double for every sample type.
+double sampleValue(const uint8_t* p, SampleType type);
 
 // spec: 3.1 coding.
 enum class GridCoding : uint8_t {
   kStored = 0,
   kWavelet = 1,
+  kTiled = 2,  // spec 11: tiles, each coded as coding 1
 };
 
 constexpr uint8_t kGridFlagHasNodata = 0x01;
@@ -114,6 +118,9 @@ struct DecodeOptions {
   // batches it needs, and no chunk after the stop is checked. 0: no limit.
   uint64_t stop_beyond_cells = 0;
   uint64_t stop_at_vertices = 0;
+  // Tiled grids (spec 11): tiles decoded by this many threads at once. The
+  // samples and any error are the same whatever the count.
+  int threads = 1;
 };
 
 // Whether a progressive mesh decode stops at these counts (DecodeOptions).
@@ -133,6 +140,11 @@ struct DecodedGrid {
   bool residual_decoded = false;
   bool has_samples = false;        // samples were produced (stored: GRAW read; wavelet: >= 1 band)
   uint32_t output_size[3] = {0, 0, 0};  // sizes of `samples` (smaller with reduce_levels)
+  // Tiled grids (coding 2, spec 11): the tile size (0 for other codings), the
+  // tiles, and those with samples (the grid has samples when all have).
+  uint32_t tile_size[3] = {0, 0, 0};
+  uint64_t tiles_total = 0;
+  uint64_t tiles_with_samples = 0;
   std::vector<uint8_t> samples;    // sample bytes, little-endian, x fastest, then y, then z
 };
 
@@ -140,6 +152,19 @@ struct DecodedGrid {
 // at once. Never throws; on failure returns the first broken rule (Annex A.2)
 // and leaves `out` holding what was read before it.
 Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedGrid* out);
+
+// What a decode of a wavelet-coded grid with DecodeOptions::reduce_levels
+// gives and reads, known from its GHDR and WHDR alone (spec 5.8.3): the sizes
+// of its samples (DecodedGrid::output_size) and how many GBND chunks, the
+// first in stream order, its synthesis uses. A prefix of the stream that ends
+// before the next GBND decodes to the same samples (the GDAL driver's
+// overviews read no more). False for a stored grid or headers with no plan.
+struct ReducedResolution {
+  uint32_t size[3] = {0, 0, 0};
+  uint32_t bands_needed = 0;
+};
+bool reducedResolution(const GridHeader& grid, const WaveletHeader& wavelet, int reduce_levels,
+                       ReducedResolution* out);
 
 // spec: 3.4 canonical output, the bytes the conformance suite hashes.
 std::vector<uint8_t> canonicalGridOutput(const DecodedGrid& grid);

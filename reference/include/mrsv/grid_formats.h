@@ -65,5 +65,8 @@ bool encodeGridOutput(const std::string& path, const GridHeader& header,
 // `origin` stays. A stored grid (no levels) keeps its spacing.
 Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& header,
                                    const uint8_t levels[3], int reduce_levels);
+// The metadata of a box of the grid whose first sample is `first`: the origin
+// moved there (spacing 1 when the metadata gives none).
+Metadata regionMetadata(const Metadata& metadata, const uint32_t first[3]);
 
 }  // namespace mrsv

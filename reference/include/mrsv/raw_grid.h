@@ -14,10 +14,6 @@ enum class Endian { kLittle, kBig };
 // Reverses the byte order of every sample in place (for 1-byte samples a no-op).
 void swapSampleBytes(std::vector<uint8_t>* samples, size_t sample_size);
 
-// The value of one little-endian sample (sampleSize(type) bytes at p), exact
-// in a double for every sample type.
-double sampleValue(const uint8_t* p, SampleType type);
-
 // Parses "X", "X,Y" or "X,Y,Z" into header sizes and num_dims. Returns an
 // empty string on success, otherwise what is wrong.
 std::string parseDims(const std::string& text, GridHeader* header);

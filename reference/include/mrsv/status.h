@@ -41,6 +41,8 @@ enum class Status : int {
   kBadWaveletHeader = 204,
   kBadBandHeader = 205,
   kBadEntropyPayload = 206,
+  kBadTiling = 207,      // spec 11.2
+  kBadTileIndex = 208,   // spec 11.3
 
   // Progressive meshes (spec: 6)
   kBadMeshHeader = 301,

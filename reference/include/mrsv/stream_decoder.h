@@ -2,7 +2,9 @@
 // network, a pipe) in pieces of any size, that decodes each chunk once, as
 // soon as the chunk is complete, and hands out each unit then: for grids each
 // band (and, on request, each resolution level's samples), for progressive
-// meshes each batch of splits applied to the mesh. spec: 2.7 (informative).
+// meshes each batch of splits applied to the mesh. Tiled grids (spec 11) are
+// framed as they arrive and their tiles decoded by finish(). spec: 2.7
+// (informative).
 //
 // Whatever the pieces, the result, errors included, is that of the one-shot
 // decoders (decodeGrid, decodeProgressiveMesh, decodeProgressiveTetMesh),

@@ -82,7 +82,8 @@ bool isKnownCriticalChunk(const ChunkType& type) {
   return type == kChunkEnd || type == kChunkGridHeader || type == kChunkGridStored ||
          type == kChunkWaveletHeader || type == kChunkNodataMask || type == kChunkBand ||
          type == kChunkResidual || type == kChunkMeshHeader || type == kChunkBaseMesh ||
-         type == kChunkSplits || type == kChunkTetHeader || type == kChunkTetBase || type == kChunkTetSplits;
+         type == kChunkSplits || type == kChunkTetHeader || type == kChunkTetBase || type == kChunkTetSplits ||
+         type == kChunkTiling || type == kChunkTileIndex;
 }
 
 Error ContainerFramer::fileHeader(const uint8_t* data, size_t size, Container* out) {

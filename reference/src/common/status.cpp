@@ -27,6 +27,8 @@ const char* statusName(Status status) {
     case Status::kBadWaveletHeader: return "bad_wavelet_header";
     case Status::kBadBandHeader: return "bad_band_header";
     case Status::kBadEntropyPayload: return "bad_entropy_payload";
+    case Status::kBadTiling: return "bad_tiling";
+    case Status::kBadTileIndex: return "bad_tile_index";
     case Status::kBadMeshHeader: return "bad_mesh_header";
     case Status::kBadBaseMesh: return "bad_base_mesh";
     case Status::kBadVertexSplit: return "bad_vertex_split";

@@ -4,6 +4,7 @@
 
 #include "mrsv/grid.h"
 #include "grid/grid_steps.h"
+#include "tiles/tile_decode.h"
 
 namespace mrsv {
 
@@ -11,14 +12,28 @@ Error GridSteps::header(const ChunkView& chunk) {
   if (Error e = parseGridHeader(chunk, &out_->header); !e.ok()) return e;
   if (out_->header.coding == GridCoding::kWavelet)
     wavelet_ = std::make_unique<WaveletGridSteps>(options_, out_, keep_);
+  tiled_ = out_->header.coding == GridCoding::kTiled;
+  keepPayload(chunk);
   return {};
 }
 
+void GridSteps::keepPayload(const ChunkView& chunk) {
+  if (!tiled_) return;
+  if (bytes_outlive_steps_) {
+    payloads_.push_back(chunk.payload);
+  } else {
+    copies_.emplace_back(chunk.payload, chunk.payload + chunk.chunk_length);
+    payloads_.push_back(copies_.back().data());
+  }
+}
+
 Error GridSteps::chunk(const ChunkView& chunk) {
+  keepPayload(chunk);
   // Metadata, whatever the coding (spec 2.6).
   if (chunk.chunk_type == kChunkMeta)
     return parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out_->metadata);
   if (wavelet_) return wavelet_->chunk(chunk);
+  if (tiled_) return {};  // decoded at the end (below)
   const GridHeader& h = out_->header;
   const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);
   if (chunk.chunk_type == kChunkGridStored) {
@@ -55,6 +70,18 @@ Error GridSteps::chunk(const ChunkView& chunk) {
 
 Error GridSteps::end(const Container& c) {
   if (wavelet_) return wavelet_->end(c);
+  if (tiled_) {
+    // The tile decode (spec 11) reads the chunks of the container, with
+    // their bytes, as kept above.
+    std::vector<const uint8_t*> before;
+    for (size_t i = 0; i < out_->container.chunks.size() && i < payloads_.size(); ++i) {
+      before.push_back(out_->container.chunks[i].payload);
+      out_->container.chunks[i].payload = payloads_[i];
+    }
+    Error e = decodeTiledGrid(options_, out_);
+    for (size_t i = 0; i < before.size(); ++i) out_->container.chunks[i].payload = before[i];
+    return e;
+  }
   if (c.complete && !seen_stored_)
     return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND",
                  "a stored grid needs one GRAW chunk before MEND"};

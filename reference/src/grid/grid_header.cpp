@@ -44,6 +44,30 @@ bool parseSampleType(const std::string& name, SampleType* out) {
   return false;
 }
 
+double sampleValue(const uint8_t* p, SampleType type) {
+  uint64_t bits = 0;
+  const size_t n = sampleSize(type);
+  for (size_t i = 0; i < n; ++i) bits |= uint64_t{p[i]} << (8 * i);  // little-endian
+  switch (type) {
+    case SampleType::kUint8: return static_cast<double>(bits);
+    case SampleType::kInt16: return static_cast<int16_t>(static_cast<uint16_t>(bits));
+    case SampleType::kUint16: return static_cast<double>(bits);
+    case SampleType::kInt32: return static_cast<int32_t>(static_cast<uint32_t>(bits));
+    case SampleType::kFloat32: {
+      uint32_t b = static_cast<uint32_t>(bits);
+      float f;
+      std::memcpy(&f, &b, 4);
+      return f;
+    }
+    case SampleType::kFloat64: {
+      double d;
+      std::memcpy(&d, &bits, 8);
+      return d;
+    }
+  }
+  return 0;
+}
+
 std::string gridHeaderProblem(const GridHeader& h) {
   if (h.num_dims < 1 || h.num_dims > 3) return "num_dims must be 1, 2 or 3";
   const uint32_t sizes[3] = {h.size_x, h.size_y, h.size_z};
@@ -90,7 +114,8 @@ Error parseGridHeader(const ChunkView& chunk, GridHeader* out) {
                 "sample_type " + std::to_string(sample_type) + " is not 1 to 6");
   h.sample_type = static_cast<SampleType>(sample_type);
   if (coding != static_cast<uint8_t>(GridCoding::kStored) &&
-      coding != static_cast<uint8_t>(GridCoding::kWavelet))
+      coding != static_cast<uint8_t>(GridCoding::kWavelet) &&
+      coding != static_cast<uint8_t>(GridCoding::kTiled))
     return fail(Status::kUnsupportedCoding, 2, "coding",
                 "coding " + std::to_string(coding) + " is not defined in this version");
   h.coding = static_cast<GridCoding>(coding);

@@ -4,7 +4,9 @@
 // all the bytes at once.
 #pragma once
 
+#include <deque>
 #include <memory>
+#include <vector>
 
 #include "grid/wavelet_decode.h"
 #include "mrsv/grid.h"
@@ -24,6 +26,9 @@ class GridSteps {
   Error end(const Container& c);
   // The wavelet steps of a wavelet-coded grid once GHDR is read, else null.
   WaveletGridSteps* wavelet() { return wavelet_.get(); }
+  // The chunks' bytes stay where they were given until end() (the one-shot
+  // decoders): a tiled grid's need not be copied.
+  void bytesOutliveSteps() { bytes_outlive_steps_ = true; }
 
  private:
   DecodeOptions options_;
@@ -31,6 +36,15 @@ class GridSteps {
   WaveletCoefficients* keep_;
   std::unique_ptr<WaveletGridSteps> wavelet_;
   bool seen_stored_ = false;
+  // Tiled grids (coding 2, spec 11) are decoded by end(), on every tile at
+  // once (decodeTiledGrid): the chunks' payloads are kept until then, copied
+  // unless the caller keeps them. Per-tile incremental decoding is left to the
+  // tile layer.
+  void keepPayload(const ChunkView& chunk);
+  bool tiled_ = false;
+  bool bytes_outlive_steps_ = false;
+  std::vector<const uint8_t*> payloads_;    // by chunk position
+  std::deque<std::vector<uint8_t>> copies_;
 };
 
 }  // namespace mrsv

@@ -701,4 +701,32 @@ Error WaveletGridSteps::levelSamples(int level, const ChunkView& last, uint32_t 
   return {};
 }
 
+Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
+                        WaveletCoefficients* coefficients) {
+  WaveletGridSteps steps(options, out, coefficients);
+  const Container& c = out->container;
+  for (size_t i = 1; i < c.chunks.size(); ++i)
+    if (Error e = steps.chunk(c.chunks[i]); !e.ok()) return e;
+  return steps.end(c);
+}
+
+bool reducedResolution(const GridHeader& grid, const WaveletHeader& wavelet, int reduce_levels,
+                       ReducedResolution* out) {
+  const uint32_t samples[3] = {grid.size_x, grid.size_y, grid.size_z};
+  const int levels[3] = {wavelet.levels[0], wavelet.levels[1], wavelet.levels[2]};
+  wavelet::GridPlan plan;
+  if (grid.coding != GridCoding::kWavelet || reduce_levels < 0 ||
+      !wavelet::makeGridPlan(grid.num_dims, samples, wavelet.order, levels, &plan))
+    return false;
+  const int stop = reduce_levels < plan.maxLevels() ? reduce_levels : plan.maxLevels();
+  int axis_stop[3];
+  outputBox(plan, stop, out->size, axis_stop);
+  // The scaling block (first) always; the detail bands above level `stop`.
+  const std::vector<wavelet::Band> bands = wavelet::bandsOf(plan);
+  out->bands_needed = 0;
+  for (size_t b = 0; b < bands.size(); ++b)
+    if (b == 0 || bands[b].level > stop) ++out->bands_needed;
+  return true;
+}
+
 }  // namespace mrsv

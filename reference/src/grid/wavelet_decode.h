@@ -59,6 +59,12 @@ class WaveletGridSteps {
   std::unique_ptr<WaveletState> s_;
 };
 
+// The steps over the chunks after the first of out->container (GHDR parsed
+// into out->header), then its end: what a tile of a tiled grid decodes with
+// (tiles/tiled_decode.cpp).
+Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
+                        WaveletCoefficients* coefficients = nullptr);
+
 // decodeGrid() that also hands out the coefficients of a wavelet-coded grid
 // (WaveletGridSteps' `keep`); defined in stream/stream_decoder.cpp.
 Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const DecodeOptions& options,

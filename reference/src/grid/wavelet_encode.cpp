@@ -30,18 +30,6 @@ using wavelet::GridPlan;
 
 bool isFloatType(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
 
-double readSample(const uint8_t* p, SampleType type) {
-  switch (type) {
-    case SampleType::kUint8: return p[0];
-    case SampleType::kInt16: { int16_t v; std::memcpy(&v, p, 2); return v; }
-    case SampleType::kUint16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case SampleType::kInt32: { int32_t v; std::memcpy(&v, p, 4); return v; }
-    case SampleType::kFloat32: { float v; std::memcpy(&v, p, 4); return v; }
-    case SampleType::kFloat64: { double v; std::memcpy(&v, p, 8); return v; }
-  }
-  return 0;
-}
-
 // Appends one coded array in the stream's entropy mode (spec 5.7 or 5.10).
 void encodeArray(uint8_t entropy_mode, int64_t* values, const ArrayBox& box,
                  ArrayPrediction prediction, const uint8_t* skip, std::vector<uint8_t>* out) {
@@ -144,7 +132,8 @@ class GridEncoder {
   Error encode(double delta, uint32_t residual_step, const Metadata& metadata,
                std::vector<uint8_t>* out);
   // Decodes `stream` with the normative decoder and measures it against the input.
-  Error measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error) const;
+  // `sse`: the sum of squared errors over the valid samples.
+  Error measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error, double* sse) const;
   uint64_t validCount() const { return valid_count_; }
   double range() const { return c_max_ - c_min_; }
   bool integerSamples() const { return !isFloatType(header_.sample_type); }
@@ -205,7 +194,7 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
       valid_[i] = 0;
       continue;
     }
-    double v = readSample(p, header_.sample_type);
+    double v = sampleValue(p, header_.sample_type);
     if (!std::isfinite(v))
       return invalid("samples", "sample " + std::to_string(i) +
                                     " is NaN or infinite; mark such samples with --nodata");
@@ -578,7 +567,7 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
     skip[i] = valid_[i] ? 0 : 1;
     if (!valid_[i]) continue;
     int64_t decoded =
-        static_cast<int64_t>(readSample(approx.samples.data() + i * bytes, header_.sample_type));
+        static_cast<int64_t>(sampleValue(approx.samples.data() + i * bytes, header_.sample_type));
     int64_t e = static_cast<int64_t>(values_[i]) - decoded;
     // The nearest multiple of the odd step s: |e - r*s| <= (s-1)/2.
     r[i] = e >= 0 ? (e + s / 2) / s : -((-e + s / 2) / s);
@@ -590,7 +579,8 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
   return payload;
 }
 
-Error GridEncoder::measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error) const {
+Error GridEncoder::measure(const std::vector<uint8_t>& stream, double* psnr, double* max_error,
+                          double* sse_out) const {
   DecodedGrid g;
   if (Error e = decodeGrid(stream.data(), stream.size(), DecodeOptions{}, &g); !e.ok()) return e;
   const size_t bytes = sampleSize(header_.sample_type);
@@ -602,7 +592,7 @@ Error GridEncoder::measure(const std::vector<uint8_t>& stream, double* psnr, dou
         return Error{Status::kInvalidArgument, 0, "verify", "a void did not come back as no-data"};
       continue;
     }
-    double d = std::fabs(readSample(p, header_.sample_type) - values_[i]);
+    double d = std::fabs(sampleValue(p, header_.sample_type) - values_[i]);
     sse += d * d;
     worst = std::max(worst, d);
   }
@@ -610,6 +600,7 @@ Error GridEncoder::measure(const std::vector<uint8_t>& stream, double* psnr, dou
   double r = c_max_ - c_min_;
   *psnr = mse > 0 ? 10 * std::log10(r * r / mse) : std::numeric_limits<double>::infinity();
   *max_error = worst;
+  *sse_out = sse;
   return {};
 }
 
@@ -642,7 +633,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
   const double n = static_cast<double>(header.sampleCount());
   // What decoding a stream measured (GridEncoder::measure).
   struct Measured {
-    double psnr = 0, max_error = 0;
+    double psnr = 0, max_error = 0, sse = 0;
   };
   // `known`: the measure of `stream` when the caller has it already.
   auto finish = [&](std::vector<uint8_t>&& stream, double delta, uint32_t residual_step,
@@ -651,7 +642,8 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     if (known) {
       rep.psnr = known->psnr;
       rep.max_abs_error = known->max_error;
-    } else if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error); !e.ok()) {
+      rep.sum_squared_error = known->sse;
+    } else if (Error e = enc.measure(stream, &rep.psnr, &rep.max_abs_error, &rep.sum_squared_error); !e.ok()) {
       return e;
     }
     // Record the figures in the meta chunk (spec 2.6 error_* keys): the chunk
@@ -779,7 +771,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
       if (by_rate) {
         meets = static_cast<double>(stream.size()) <= target_bytes;
       } else {
-        if (Error err = e.measure(stream, &m.psnr, &m.max_error); !err.ok()) return err;
+        if (Error err = e.measure(stream, &m.psnr, &m.max_error, &m.sse); !err.ok()) return err;
         meets = m.psnr >= options.psnr;
       }
       // A larger step gives a smaller stream and a lower PSNR.
@@ -795,7 +787,8 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     }
     if (!found->empty() && !*found_measured) {
       found_measured->emplace();
-      if (Error err = e.measure(*found, &(*found_measured)->psnr, &(*found_measured)->max_error); !err.ok())
+      if (Error err = e.measure(*found, &(*found_measured)->psnr, &(*found_measured)->max_error,
+                                &(*found_measured)->sse); !err.ok())
         return err;
     }
     return {};
@@ -879,7 +872,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
         }
       }
       Measured& m = candidate_measured;
-      if (Error e = predictive_enc.measure(candidate, &m.psnr, &m.max_error); !e.ok()) return e;
+      if (Error e = predictive_enc.measure(candidate, &m.psnr, &m.max_error, &m.sse); !e.ok()) return e;
       // Kept when better, or as good (both exact) and smaller.
       if (!(m.psnr > wavelet_psnr || (m.psnr == wavelet_psnr && candidate.size() < best.size())))
         candidate.clear();
@@ -891,7 +884,7 @@ Error encodeWaveletGrid(const GridHeader& header, const std::vector<uint8_t>& sa
     Measured& m = candidate_measured;
     while (true) {
       if (Error e = predictiveAt(d, &stream); !e.ok()) return e;
-      if (Error e = predictive_enc.measure(stream, &m.psnr, &m.max_error); !e.ok()) return e;
+      if (Error e = predictive_enc.measure(stream, &m.psnr, &m.max_error, &m.sse); !e.ok()) return e;
       if (m.psnr >= options.psnr || d == 0) break;
       d /= 2;
     }

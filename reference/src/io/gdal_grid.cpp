@@ -4,6 +4,7 @@
 // pixel sizes (negative y for north-up rasters), `crs` EPSG:n or one-line WKT2.
 #include "io/gdal_grid.h"
 
+#include "io/gdal_dataset.h"
 #include "io/gdal_georef.h"
 
 #include <cpl_conv.h>
@@ -160,10 +161,13 @@ bool readGdalGrid(const std::string& path, int band, GridInput* in, std::string*
     *error = path + ": not a raster GDAL reads" + QuietGdalErrors::last();
     return false;
   }
-  struct Closer {
-    GDALDatasetH ds;
-    ~Closer() { GDALClose(ds); }
-  } closer{ds};
+  const bool ok = readGdalDataset(ds, path, band, in, error);
+  GDALClose(ds);
+  return ok;
+}
+
+bool readGdalDataset(GDALDatasetH ds, const std::string& path, int band, GridInput* in,
+                     std::string* error, GDALProgressFunc progress, void* progress_data) {
   const int bands = GDALGetRasterCount(ds);
   if (bands < 1) {
     *error = path + ": the raster has no band";
@@ -210,7 +214,11 @@ bool readGdalGrid(const std::string& path, int band, GridInput* in, std::string*
 
   const size_t bytes = sampleSize(in->header.sample_type);
   in->samples.resize(static_cast<size_t>(in->header.sampleCount()) * bytes);
-  if (GDALRasterIO(b, GF_Read, 0, 0, w, h, in->samples.data(), w, h, type, 0, 0) != CE_None) {
+  GDALRasterIOExtraArg extra;
+  INIT_RASTERIO_EXTRA_ARG(extra);
+  extra.pfnProgress = progress;
+  extra.pProgressData = progress_data;
+  if (GDALRasterIOEx(b, GF_Read, 0, 0, w, h, in->samples.data(), w, h, type, 0, 0, &extra) != CE_None) {
     *error = path + ": reading the samples failed" + QuietGdalErrors::last();
     return false;
   }

@@ -462,12 +462,25 @@ Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& h
   Metadata out = metadata;
   const std::string* text = metadata.find("spacing");
   std::vector<double> spacing;
-  if (!text || reduce_levels <= 0 || header.coding != GridCoding::kWavelet ||
+  if (!text || reduce_levels <= 0 || header.coding == GridCoding::kStored ||
       !parseMetaNumberList(*text, &spacing))
     return out;
   for (size_t a = 0; a < spacing.size() && a < 3; ++a)
     spacing[a] = std::ldexp(spacing[a], std::min(reduce_levels, static_cast<int>(levels[a])));
   out.set("spacing", formatMetaNumberList(spacing));
+  return out;
+}
+
+Metadata regionMetadata(const Metadata& metadata, const uint32_t first[3]) {
+  Metadata out = metadata;
+  const std::string* origin_text = metadata.find("origin");
+  const std::string* spacing_text = metadata.find("spacing");
+  std::vector<double> origin, spacing;
+  if (!origin_text || !parseMetaNumberList(*origin_text, &origin)) return out;
+  if (spacing_text && !parseMetaNumberList(*spacing_text, &spacing)) spacing.clear();
+  for (size_t a = 0; a < origin.size() && a < 3; ++a)
+    origin[a] += first[a] * (a < spacing.size() ? spacing[a] : 1.0);
+  out.set("origin", formatMetaNumberList(origin));
   return out;
 }
 

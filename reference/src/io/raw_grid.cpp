@@ -38,28 +38,5 @@ std::string parseDims(const std::string& text, GridHeader* header) {
   return {};
 }
 
-double sampleValue(const uint8_t* p, SampleType type) {
-  uint64_t bits = 0;
-  const size_t n = sampleSize(type);
-  for (size_t i = 0; i < n; ++i) bits |= uint64_t{p[i]} << (8 * i);  // little-endian
-  switch (type) {
-    case SampleType::kUint8: return static_cast<double>(bits);
-    case SampleType::kInt16: return static_cast<int16_t>(static_cast<uint16_t>(bits));
-    case SampleType::kUint16: return static_cast<double>(bits);
-    case SampleType::kInt32: return static_cast<int32_t>(static_cast<uint32_t>(bits));
-    case SampleType::kFloat32: {
-      uint32_t b = static_cast<uint32_t>(bits);
-      float f;
-      std::memcpy(&f, &b, 4);
-      return f;
-    }
-    case SampleType::kFloat64: {
-      double d;
-      std::memcpy(&d, &bits, 8);
-      return d;
-    }
-  }
-  return 0;
-}
 
 }  // namespace mrsv

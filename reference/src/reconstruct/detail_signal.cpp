@@ -70,7 +70,7 @@ bool quadtreeDetailsFromStream(const uint8_t* data, size_t size, const DecodeOpt
   }
   if (!sampleFieldFromGrid(grid, field, error)) return false;
   if (grid.header.coding != GridCoding::kWavelet || coefficients.values.empty()) {
-    if (error) *error = "the wavelet criterion needs a wavelet-coded grid";
+    if (error) *error = "the wavelet criterion needs a wavelet-coded grid (not stored, not tiled)";
     return false;
   }
   return detailSignals(coefficients, grid.wavelet.frac_bits, grid.header.size_x, grid.header.size_y,

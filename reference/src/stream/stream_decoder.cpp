@@ -23,6 +23,7 @@ struct StreamDecoder::Impl {
   StreamContent content = StreamContent::kUnknown;
   ContainerFramer framer;
   WaveletCoefficients* keep = nullptr;  // decodeGridKeepingCoefficients()
+  bool one_shot = false;  // all the bytes in one feed() the caller keeps until finish()
 
   // The results; `container` is that of the one content() names (the grid's
   // until the content header is read).
@@ -107,6 +108,7 @@ void StreamDecoder::Impl::contentHeader(const ChunkView& chunk) {
   switch (content) {
     case StreamContent::kGrid:
       grid_steps = std::make_unique<GridSteps>(options, &grid, keep);
+      if (one_shot) grid_steps->bytesOutliveSteps();
       if (e = grid_steps->header(chunk); !e.ok()) return defer(e, 3);
       return;
     case StreamContent::kMesh:
@@ -305,6 +307,7 @@ namespace {
 // into `data`, which the caller keeps.
 template <class Result>
 Error oneShot(StreamDecoder::Impl* d, const uint8_t* data, size_t size, Result* result, Result* out) {
+  d->one_shot = true;
   Error e = d->feed(data, size, /*last=*/true);
   if (e.ok()) e = d->finish();
   *out = std::move(*result);

@@ -1,0 +1,41 @@
+// Decoding the tiles of a tiled grid (spec 11), shared by the whole-grid
+// decode (decodeGrid) and the region decode (decodeGridRegion).
+#pragma once
+
+#include <vector>
+
+#include "mrsv/tiled_grid.h"
+
+namespace mrsv {
+
+// One tile to decode and the chunks of it that are present, in file order.
+struct TileJob {
+  uint64_t tile = 0;
+  std::vector<ChunkView> chunks;
+};
+
+// Checks the tile chunks' framing against the index (spec 11.1 rules 5 and 6)
+// for the chunks at container positions [first, end): `chunks[first + k]` is
+// the k-th tile chunk of the file. Returns the first broken rule; `*present`
+// is how many tile chunks pass it.
+Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k);
+
+// The output lattice of a decode of `region` reduced by `levels` (spec 11.6):
+// the samples g of the region with g a multiple of 2^levels on every axis.
+void regionOutputSize(const GridRegion& region, int levels, uint32_t size[3]);
+
+// Decodes the jobs (tiles in increasing order) with options.threads threads
+// and copies the samples that fall in `region` into out->samples, laid out as
+// regionOutputSize() says. `complete`: the stream ended with MEND at
+// `end_offset` and every tile chunk is present, so each tile's end rules
+// (spec 5.1 rules 11-13) apply. The first broken rule in file order is
+// returned (at MEND, the lowest tile's). Sets out->has_samples, output_size,
+// bands_decoded/total and tiles_with_samples.
+Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool complete,
+                  uint64_t end_offset, const GridRegion& region, const DecodeOptions& options,
+                  DecodedGrid* out);
+
+// decodeGrid() for coding 2, once the container is framed, GHDR and meta read.
+Error decodeTiledGrid(const DecodeOptions& options, DecodedGrid* out);
+
+}  // namespace mrsv

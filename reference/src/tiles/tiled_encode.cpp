@@ -1,0 +1,288 @@
+// spec: 11.7 (informative) the reference encoder of tiled grids: each tile
+// coded as a wavelet grid of its own, in parallel; a rate or PSNR target met
+// with one quantiser step for the whole grid, so that bits go where the
+// detail is, as in an untiled stream.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <mutex>
+
+#include "common/parallel_for.h"
+#include "mrsv/encode.h"
+#include "mrsv/tiled_grid.h"
+#include "tiles/tile_encoding.h"
+
+namespace mrsv {
+
+namespace {
+
+Error invalid(std::string field, std::string message) {
+  return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
+}
+
+}  // namespace
+
+std::vector<uint8_t> tileSamplesFrom(const TileGrid& tiles, uint64_t tile, const uint8_t* box,
+                                     const uint32_t box_origin[3], const uint32_t box_size[3]) {
+  uint32_t origin[3], size[3];
+  tiles.box(tile, origin, size);
+  const size_t bytes = sampleSize(tiles.grid.sample_type);
+  const uint64_t row = uint64_t{size[0]} * bytes;
+  std::vector<uint8_t> out(row * size[1] * size[2]);
+  uint8_t* dst = out.data();
+  for (uint32_t z = 0; z < size[2]; ++z)
+    for (uint32_t y = 0; y < size[1]; ++y, dst += row) {
+      const uint64_t at = ((uint64_t{origin[2] + z - box_origin[2]} * box_size[1] + origin[1] + y - box_origin[1]) *
+                               box_size[0] + origin[0] - box_origin[0]) * bytes;
+      std::memcpy(dst, box + at, row);
+    }
+  return out;
+}
+
+namespace {
+
+std::vector<uint8_t> tileSamples(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples) {
+  const uint32_t origin[3] = {0, 0, 0};
+  const uint32_t size[3] = {tiles.grid.size_x, tiles.grid.size_y, tiles.grid.size_z};
+  return tileSamplesFrom(tiles, tile, samples.data(), origin, size);
+}
+
+}  // namespace
+
+TileResult encodeTileSamples(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& tile_samples,
+                             const WaveletEncodeOptions& options) {
+  TileResult r;
+  std::vector<uint8_t> stream;
+  WaveletEncodeReport report;
+  r.error = encodeWaveletGrid(tiles.tileHeader(tile), tile_samples, Metadata{}, options, &stream, &report);
+  if (!r.error.ok()) {
+    r.error.message = "tile " + std::to_string(tile) + ": " + r.error.message;
+    return r;
+  }
+  Container c;
+  if (Error e = readContainer(stream.data(), stream.size(), ContainerOptions{}, &c); !e.ok()) {
+    r.error = e;
+    return r;
+  }
+  for (size_t i = 1; i < c.chunks.size(); ++i) {
+    const ChunkView& chunk = c.chunks[i];
+    if (chunk.chunk_type == kChunkMeta) continue;
+    r.chunks.emplace_back(chunk.chunk_type, std::vector<uint8_t>(chunk.payload, chunk.payload + chunk.chunk_length));
+    r.bytes += kChunkHeaderSize + uint64_t{chunk.chunk_length} + kChunkCrcSize;
+  }
+  if (r.chunks.size() > 255) r.error = invalid("tile", "a tile has more than 255 chunks");
+  r.sse = report.sum_squared_error;
+  r.max_abs = report.max_abs_error;
+  r.levels = report.levels;
+  return r;
+}
+
+namespace {
+
+TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
+                      const WaveletEncodeOptions& options) {
+  return encodeTileSamples(tiles, tile, tileSamples(tiles, tile, samples), options);
+}
+
+// A tile at a given step (rate and PSNR targets): the full pyramid and 2 and
+// 1 levels are tried, and the one with the least sse + lambda * bits is kept,
+// lambda = (ln 2 / 6) step^2, the slope of D(R) = sigma^2 2^-2R at D = step^2 / 12.
+// A small tile pays for each band's cold context models and chunk framing,
+// so it often does best with fewer levels (decision D77).
+TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
+                            const WaveletEncodeOptions& options) {
+  TileResult best = encodeTile(tiles, tile, samples, options);
+  if (!best.error.ok() || options.progressive) return best;
+  const double lambda = std::log(2.0) / 6 * options.step * options.step;
+  auto cost = [&](const TileResult& r) { return r.sse + lambda * 8 * static_cast<double>(r.bytes); };
+  for (int levels : {2, 1}) {
+    if (levels >= best.levels || levels > options.max_levels) continue;
+    WaveletEncodeOptions fewer = options;
+    fewer.max_levels = levels;
+    TileResult r = encodeTile(tiles, tile, samples, fewer);
+    if (r.error.ok() && cost(r) < cost(best)) best = std::move(r);
+  }
+  return best;
+}
+
+}  // namespace
+
+void ErrorTally::addSamples(const GridHeader& h, const uint8_t* samples, size_t size) {
+  const size_t bytes = sampleSize(h.sample_type);
+  for (size_t i = 0; i < size; i += bytes) {
+    if (h.hasNodata() && std::memcmp(samples + i, &h.nodata_bits, bytes) == 0) continue;
+    const double v = sampleValue(samples + i, h.sample_type);
+    ++valid;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+}
+
+void ErrorTally::addTile(const TileResult& r) {
+  sse += r.sse;
+  max_abs = std::max(max_abs, r.max_abs);
+  levels = std::max(levels, r.levels);
+}
+
+Metadata ErrorTally::record(const Metadata& metadata, const WaveletEncodeOptions& options,
+                            WaveletEncodeReport* report) const {
+  auto text = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return std::string(buf);
+  };
+  const double mse = valid ? sse / static_cast<double>(valid) : 0;
+  const double range = valid ? hi - lo : 0;
+  report->sum_squared_error = sse;
+  report->max_abs_error = max_abs;
+  report->levels = levels;
+  report->psnr = mse > 0 ? 10 * std::log10(range * range / mse) : std::numeric_limits<double>::infinity();
+  Metadata recorded = metadata;
+  if (options.max_error >= 0) recorded.set("error_bound", text(std::floor(options.max_error)));
+  recorded.set("error_max_abs", text(max_abs));
+  recorded.set("error_psnr_db", std::isinf(report->psnr) ? "inf" : text(report->psnr));
+  recorded.set("error_rmse", text(std::sqrt(mse)));
+  return recorded;
+}
+
+Metadata ErrorTally::probe(const Metadata& metadata) {
+  Metadata probe = metadata;
+  for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
+    probe.set(key, "-1.23457e+300");
+  return probe;
+}
+
+Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samples, const Metadata& metadata,
+                      const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
+                      std::vector<uint8_t>* out, WaveletEncodeReport* report) {
+  GridHeader h = header;
+  h.coding = GridCoding::kTiled;
+  if (std::string problem = gridHeaderProblem(h); !problem.empty()) return invalid("grid_header", problem);
+  if (samples.size() != h.sampleCount() * sampleSize(h.sample_type))
+    return invalid("samples", "got " + std::to_string(samples.size()) + " bytes, the grid needs " +
+                                  std::to_string(h.sampleCount() * sampleSize(h.sample_type)));
+  TilingHeader tiling;
+  for (int a = 0; a < 3; ++a) tiling.tile_size[a] = a < h.num_dims ? tiled.tile_size[a] : 1;
+  if (std::string problem = tilingProblem(tiling, h); !problem.empty()) return invalid("tile_size", problem);
+  if (options.has_roi)
+    return invalid("roi", "a region of interest is not supported with tiles in this version");
+  const TileGrid tiles = TileGrid::make(h, tiling);
+  const uint64_t n_tiles = tiles.tileCount();
+  std::vector<TileResult> results(n_tiles);
+  std::atomic<uint64_t> done{0};
+  std::mutex progress_lock;
+  auto encodeAll = [&](const WaveletEncodeOptions& o) -> Error {
+    parallelFor(n_tiles, tiled.threads, [&](uint64_t t) {
+      results[t] = o.step > 0 && options.step == 0 ? encodeTileAtStep(tiles, t, samples, o)
+                                                   : encodeTile(tiles, t, samples, o);
+      if (tiled.progress) {
+        std::lock_guard<std::mutex> lock(progress_lock);
+        tiled.progress(++done, n_tiles);
+      }
+    });
+    for (const TileResult& r : results)
+      if (!r.error.ok()) return r.error;
+    return {};
+  };
+  WaveletEncodeReport rep;
+  ErrorTally tally;
+  tally.addSamples(h, samples.data(), samples.size());
+  const uint64_t valid = tally.valid;
+  const double lo = tally.lo, hi = tally.hi;
+  // The framed bytes of everything but the tile chunks: header, GHDR, TINF,
+  // TIDX, MEND, and the meta chunk with its recorded error figures.
+  const Metadata probe = ErrorTally::probe(metadata);
+  auto overhead = [&](uint64_t tile_chunks) {
+    return double(kFileHeaderSize + 3 * (kChunkHeaderSize + kChunkCrcSize) + kGridHeaderSize +
+                  kTilingHeaderSize + (kChunkHeaderSize + kChunkCrcSize) + n_tiles + 4 * tile_chunks +
+                  serializeMetadata(probe).size() + kChunkHeaderSize + kChunkCrcSize);
+  };
+  auto totals = [&](uint64_t* bytes, uint64_t* chunks, double* sse) {
+    *bytes = *chunks = 0;
+    *sse = 0;
+    for (const TileResult& r : results) {
+      *bytes += r.bytes;
+      *chunks += r.chunks.size();
+      *sse += r.sse;
+    }
+  };
+  const bool by_rate = options.bits_per_sample > 0, by_psnr = options.psnr > 0;
+  if (by_rate || by_psnr) {
+    // One step for every tile, found by bisection on its logarithm; a larger
+    // step gives fewer bytes and a lower PSNR.
+    const double range = std::max(hi - lo, 1e-300);
+    const double target_bits = options.bits_per_sample * static_cast<double>(h.sampleCount());
+    double lo_log = std::log2(range) - 30, hi_log = std::log2(range) + 2;
+    std::vector<TileResult> best;
+    WaveletEncodeOptions step_options = options;
+    step_options.bits_per_sample = 0;
+    step_options.psnr = 0;
+    for (int it = 0; it < 40 && hi_log - lo_log > 1e-3; ++it) {
+      const double mid = 0.5 * (lo_log + hi_log);
+      step_options.step = std::exp2(mid);
+      done = 0;
+      if (Error e = encodeAll(step_options); !e.ok()) return e;
+      ++rep.iterations;
+      uint64_t bytes, chunks;
+      double sse;
+      totals(&bytes, &chunks, &sse);
+      const double total_bits = 8 * (static_cast<double>(bytes) + overhead(chunks));
+      const double mse = valid ? sse / static_cast<double>(valid) : 0;
+      const bool meets = by_rate ? total_bits <= target_bits
+                                 : (mse == 0 || 10 * std::log10(range * range / mse) >= options.psnr);
+      if (meets) {
+        best = results;
+        (by_rate ? hi_log : lo_log) = mid;
+        if (by_rate && total_bits >= 0.999 * target_bits) break;
+      } else {
+        (by_rate ? lo_log : hi_log) = mid;
+      }
+    }
+    if (best.empty())
+      return invalid(by_rate ? "bits_per_sample" : "psnr",
+                     by_rate ? "the rate is too low for even the coarsest approximation of every tile"
+                             : "the PSNR target cannot be met");
+    results = std::move(best);
+  } else {
+    if (Error e = encodeAll(options); !e.ok()) return e;
+    rep.iterations = 1;
+  }
+  // The stream: GHDR, meta, TINF, TIDX, then the tile chunks round by round.
+  uint64_t chunks = 0;
+  for (const TileResult& r : results) {
+    tally.addTile(r);
+    chunks += r.chunks.size();
+  }
+  const Metadata recorded = tally.record(metadata, options, &rep);
+  std::vector<std::vector<uint32_t>> lengths(n_tiles);
+  std::vector<uint8_t> counts(n_tiles);
+  for (uint64_t t = 0; t < n_tiles; ++t) {
+    counts[t] = static_cast<uint8_t>(results[t].chunks.size());
+    for (const auto& chunk : results[t].chunks) lengths[t].push_back(static_cast<uint32_t>(chunk.second.size()));
+  }
+  const std::vector<uint8_t> index = serializeTileIndex(lengths);
+  if (index.size() > kMaxChunkPayload) return invalid("tile_size", "the tile index exceeds the chunk limit");
+  if (chunks + 6 > kMaxChunks)
+    return invalid("tile_size", "the tiles make " + std::to_string(chunks) + " chunks, above the limit of " +
+                                    std::to_string(kMaxChunks) + " (use larger tiles)");
+  ContainerWriter writer;
+  writer.addChunk(kChunkGridHeader, serializeGridHeader(h));
+  writer.addChunk(kChunkMeta, serializeMetadata(recorded));
+  writer.addChunk(kChunkTiling, serializeTilingHeader(tiling));
+  writer.addChunk(kChunkTileIndex, index);
+  for (const auto& [tile, nth] : tileChunkOrder(counts)) {
+    auto& chunk = results[tile].chunks[nth];
+    writer.addChunk(chunk.first, chunk.second);
+    std::vector<uint8_t>().swap(chunk.second);  // written: free it
+  }
+  *out = writer.finish();
+  rep.bytes = out->size();
+  rep.bits_per_sample = 8.0 * static_cast<double>(out->size()) / static_cast<double>(h.sampleCount());
+  if (report) *report = rep;
+  return {};
+}
+
+}  // namespace mrsv

@@ -1,0 +1,157 @@
+// spec: 11.7 (informative) out-of-core tiled encoding: the grid read a row of
+// tiles at a time, the coded tiles kept in a temporary file, the stream
+// written in round order at the end. Memory: one row of tiles, the tiles in
+// flight, the index; the stream is byte-identical to encodeTiledGrid()'s.
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "common/crc32c.h"
+#include "common/parallel_for.h"
+#include "mrsv/encode.h"
+#include "tiles/tile_encoding.h"
+
+namespace mrsv {
+
+namespace {
+
+Error invalid(std::string field, std::string message) {
+  return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
+}
+Error ioFailure(std::string what) { return Error{Status::kIoError, 0, "file", std::move(what)}; }
+
+bool writeChunk(ByteSink& out, const ChunkType& type, const std::vector<uint8_t>& payload) {
+  const std::vector<uint8_t> bytes = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
+  return out.write(bytes.data(), bytes.size());
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+// Where one coded tile chunk waits in the spill file.
+struct SpilledChunk {
+  ChunkType type;
+  uint64_t offset;
+  uint32_t length;
+};
+
+}  // namespace
+
+std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, uint32_t length) {
+  std::vector<uint8_t> out(kChunkHeaderSize + size_t{length} + kChunkCrcSize);
+  for (int i = 0; i < 4; ++i) out[i] = static_cast<uint8_t>(type.c[i]);
+  for (int i = 0; i < 4; ++i) out[4 + i] = static_cast<uint8_t>(length >> (8 * i));
+  if (length > 0) std::memcpy(out.data() + kChunkHeaderSize, payload, length);
+  const uint32_t crc = crc32c(0, out.data(), kChunkHeaderSize + size_t{length});
+  for (int i = 0; i < 4; ++i) out[kChunkHeaderSize + length + i] = static_cast<uint8_t>(crc >> (8 * i));
+  return out;
+}
+
+std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& recorded, const TilingHeader& tiling,
+                                     const std::vector<uint8_t>& index) {
+  std::vector<uint8_t> out(kSignature, kSignature + sizeof kSignature);
+  out.insert(out.end(), {kVersionMajor, kVersionMinor, 0});
+  auto add = [&](const ChunkType& type, const std::vector<uint8_t>& payload) {
+    const std::vector<uint8_t> bytes = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
+    out.insert(out.end(), bytes.begin(), bytes.end());
+  };
+  add(kChunkGridHeader, serializeGridHeader(grid));
+  add(kChunkMeta, serializeMetadata(recorded));
+  add(kChunkTiling, serializeTilingHeader(tiling));
+  add(kChunkTileIndex, index);
+  return out;
+}
+
+Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                                const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
+                                ByteSink& out, WaveletEncodeReport* report) {
+  GridHeader h = header;
+  h.coding = GridCoding::kTiled;
+  if (std::string problem = gridHeaderProblem(h); !problem.empty()) return invalid("grid_header", problem);
+  TilingHeader tiling;
+  for (int a = 0; a < 3; ++a) tiling.tile_size[a] = a < h.num_dims ? tiled.tile_size[a] : 1;
+  if (std::string problem = tilingProblem(tiling, h); !problem.empty()) return invalid("tile_size", problem);
+  if (options.has_roi) return invalid("roi", "a region of interest is not supported with tiles in this version");
+  if (options.bits_per_sample > 0 || options.psnr > 0)
+    return invalid("options", "an out-of-core encoding takes a lossless, error-bound, step or keep target "
+                              "(a rate or PSNR target reads the grid once per step tried)");
+  const TileGrid tiles = TileGrid::make(h, tiling);
+  const size_t bytes = sampleSize(h.sample_type);
+  std::unique_ptr<std::FILE, FileCloser> spill(std::tmpfile());
+  if (!spill) return ioFailure("cannot create a temporary file for the coded tiles");
+  std::vector<std::vector<SpilledChunk>> spilled(tiles.tileCount());
+  ErrorTally tally;
+  uint64_t spill_end = 0, done = 0;
+  // Row by row of tiles (along x), slab by slab (z): the box of one row.
+  for (uint32_t tz = 0; tz < tiles.count[2]; ++tz) {
+    for (uint32_t ty = 0; ty < tiles.count[1]; ++ty) {
+      const uint64_t first = (uint64_t{tz} * tiles.count[1] + ty) * tiles.count[0];
+      uint32_t origin[3], size[3];
+      tiles.box(first, origin, size);
+      origin[0] = 0;
+      size[0] = h.size_x;
+      std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * bytes);
+      std::string error;
+      if (!reader.read(origin, size, box.data(), &error)) return ioFailure("reading the grid: " + error);
+      tally.addSamples(h, box.data(), box.size());
+      std::vector<TileResult> row(tiles.count[0]);
+      parallelFor(row.size(), tiled.threads, [&](uint64_t i) {
+        row[i] = encodeTileSamples(tiles, first + i, tileSamplesFrom(tiles, first + i, box.data(), origin, size),
+                                   options);
+      });
+      for (uint64_t i = 0; i < row.size(); ++i) {
+        TileResult& r = row[i];
+        if (!r.error.ok()) return r.error;
+        tally.addTile(r);
+        for (const auto& [type, payload] : r.chunks) {
+          if (std::fwrite(payload.data(), 1, payload.size(), spill.get()) != payload.size())
+            return ioFailure("cannot write the temporary file of coded tiles (disk full?)");
+          spilled[first + i].push_back({type, spill_end, static_cast<uint32_t>(payload.size())});
+          spill_end += payload.size();
+        }
+      }
+      done += row.size();
+      if (tiled.progress) tiled.progress(done, tiles.tileCount());
+    }
+  }
+  if (std::fflush(spill.get()) != 0) return ioFailure("cannot write the temporary file of coded tiles");
+  // The stream, as encodeTiledGrid() writes it.
+  std::vector<std::vector<uint32_t>> lengths(spilled.size());
+  std::vector<uint8_t> counts(spilled.size());
+  uint64_t chunks = 0;
+  for (size_t t = 0; t < spilled.size(); ++t) {
+    counts[t] = static_cast<uint8_t>(spilled[t].size());
+    for (const SpilledChunk& c : spilled[t]) lengths[t].push_back(c.length);
+    chunks += spilled[t].size();
+  }
+  const std::vector<uint8_t> index = serializeTileIndex(lengths);
+  if (index.size() > kMaxChunkPayload) return invalid("tile_size", "the tile index exceeds the chunk limit");
+  if (chunks + 6 > kMaxChunks)
+    return invalid("tile_size", "the tiles make " + std::to_string(chunks) + " chunks, above the limit of " +
+                                    std::to_string(kMaxChunks) + " (use larger tiles)");
+  WaveletEncodeReport rep;
+  rep.iterations = 1;
+  const Metadata recorded = tally.record(metadata, options, &rep);
+  const std::vector<uint8_t> head = tiledStreamHead(h, recorded, tiling, index);
+  uint64_t written = head.size();
+  if (!out.write(head.data(), head.size())) return ioFailure("cannot write the stream");
+  std::vector<uint8_t> payload;
+  for (const auto& [tile, nth] : tileChunkOrder(counts)) {
+    const SpilledChunk& c = spilled[tile][nth];
+    payload.resize(c.length);
+    if (std::fseek(spill.get(), static_cast<long>(c.offset), SEEK_SET) != 0 ||
+        std::fread(payload.data(), 1, c.length, spill.get()) != c.length)
+      return ioFailure("cannot read back the temporary file of coded tiles");
+    if (!writeChunk(out, c.type, payload)) return ioFailure("cannot write the stream");
+    written += kChunkHeaderSize + uint64_t{c.length} + kChunkCrcSize;
+  }
+  if (!writeChunk(out, kChunkEnd, {})) return ioFailure("cannot write the stream");
+  written += kChunkHeaderSize + kChunkCrcSize;
+  rep.bytes = written;
+  rep.bits_per_sample = 8.0 * static_cast<double>(written) / static_cast<double>(h.sampleCount());
+  if (report) *report = rep;
+  return {};
+}
+
+}  // namespace mrsv

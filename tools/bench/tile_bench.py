@@ -1,0 +1,206 @@
+#!/usr/bin/env python3
+"""Issue 24's measured goals for tiled grids, peers measured in the same run.
+
+  1. A terrain mosaic of at least 12,000 x 12,000 samples, built from the four SRTM
+     tiles of ../shared/data by tiling with mirroring (each copy reflected so that
+     neighbours meet along equal edges; a stand-in until larger real data is
+     available): encoded with 256 x 256 tiles, on 1 and 2 threads (same bytes,
+     speed-up), peak memory against the raw size; decoded whole and as a 512 x 512
+     region (speed ratio, bytes read), against OpenJPEG's tiled JPEG 2000 at the
+     same rate decoded with opj_decompress -d on the same window.
+  2. Rate-distortion at 1 bit per sample, tiled (256^2, and 64^3 bricks for a CT
+     volume) against untiled, per grid.
+
+  python3 tools/bench/tile_bench.py [--mrsv build/mrsv] [--side 12010] [--quick]
+
+--quick uses a 2402 x 2402 mosaic and skips nothing else (a smoke run).
+"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.join(HERE, "..", "..")
+DATA = os.path.join(ROOT, "..", "shared", "data")
+SRTM = ["srtm3_N27E086_mt_everest_1201x1201_int16le", "srtm3_N35E138_mt_fuji_1201x1201_int16le",
+        "srtm3_N46W122_mt_rainier_1201x1201_int16le"]
+
+
+def load(name, tmp):
+    path = os.path.join(tmp, name + ".raw")
+    if not os.path.exists(path):
+        subprocess.run(["zstd", "-dqf", os.path.join(DATA, "terrain" if "x1201" in name or "tujunga" in name
+                                                       else "volume", name + ".raw.zst"), "-o", path], check=True)
+    return path
+
+
+def mosaic(tmp, side):
+    """side x side int16: SRTM tiles (voids filled by their row's neighbour) laid out
+    with mirroring; numpy does the work."""
+    import numpy as np
+    tiles = []
+    for name in SRTM:
+        a = np.fromfile(load(name, tmp), dtype="<i2").reshape(1201, 1201).copy()
+        voids = a == -32768
+        if voids.any():
+            a[voids] = int(np.median(a[~voids]))
+        tiles.append(a)
+    n = math.ceil(side / 1201)
+    rows = []
+    for j in range(n):
+        row = []
+        for i in range(n):
+            t = tiles[(i + 2 * j) % len(tiles)]
+            if i % 2:
+                t = t[:, ::-1]
+            if j % 2:
+                t = t[::-1, :]
+            row.append(t)
+        rows.append(np.hstack(row))
+    m = np.vstack(rows)[:side, :side]
+    path = os.path.join(tmp, f"mosaic_{side}.raw")
+    m.astype("<i2").tofile(path)
+    return path
+
+
+def run(cmd, **kw):
+    """(seconds, peak RSS in MB, stderr) of a command."""
+    t = time.perf_counter()
+    p = subprocess.run(["/usr/bin/time", "-f", "maxrss %M"] + cmd, capture_output=True, text=True, **kw)
+    dt = time.perf_counter() - t
+    if p.returncode != 0:
+        sys.exit(f"tile_bench: {' '.join(cmd)} failed: {p.stderr.strip()[-400:]}")
+    rss = int(re.search(r"maxrss (\d+)", p.stderr).group(1)) / 1024
+    return dt, rss, p.stderr
+
+
+def best(cmd, repeat=3):
+    return min(run(cmd)[0] for _ in range(repeat))
+
+
+def psnr_of(stderr):
+    m = re.search(r"PSNR ([0-9.inf]+) dB", stderr)
+    return float(m.group(1)) if m else float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--mrsv", default=os.path.join(ROOT, "build", "mrsv"))
+    ap.add_argument("--side", type=int, default=12010)
+    ap.add_argument("--quick", action="store_true")
+    args = ap.parse_args()
+    mrsv = os.path.abspath(args.mrsv)
+    side = 2402 if args.quick else args.side
+    with tempfile.TemporaryDirectory(prefix="mrsv-tile-bench-") as tmp:
+        print(f"== mosaic {side} x {side} int16 ({side * side * 2 / 2**20:.0f} MiB raw), 256 x 256 tiles")
+        raw = mosaic(tmp, side)
+        raw_mb = os.path.getsize(raw) / 2**20
+        dims = ["--dims", f"{side},{side}", "--type", "int16"]
+        out = {}
+        for threads in (1, 2):
+            out[threads] = os.path.join(tmp, f"m{threads}.mrsv")
+            dt, rss, _ = run([mrsv, "encode", "--quiet", *dims, "--tile", "256", "--max-error", "2", "--bound-route", "residual",
+                              "--threads", str(threads), raw, out[threads]])
+            print(f"encode --max-error 2 (residual route), {threads} thread(s): {dt:.1f} s, peak {rss:.0f} MB "
+                  f"({100 * rss / raw_mb:.0f} % of raw)")
+            if threads == 1:
+                t1 = dt
+            else:
+                print(f"  speed-up 1 -> 2 threads: {t1 / dt:.2f}x; streams identical: "
+                      f"{open(out[1], 'rb').read() == open(out[2], 'rb').read()}")
+        stream = out[2]
+        size = os.path.getsize(stream)
+        bps = 8 * size / (side * side)
+        print(f"stream {size / 2**20:.1f} MiB, {bps:.3f} bits/sample")
+        whole1 = best([mrsv, "decode", "--quiet", "--threads", "1", stream, os.path.join(tmp, "w.raw")], 2)
+        whole2 = best([mrsv, "decode", "--quiet", "--threads", "2", stream, os.path.join(tmp, "w.raw")], 2)
+        print(f"decode whole: {whole1:.2f} s on 1 thread, {whole2:.2f} s on 2 (speed-up {whole1 / whole2:.2f}x)")
+        x0, y0 = side // 2 - 200, side // 3 + 77
+        box = f"{x0},{y0},{x0 + 512},{y0 + 512}"
+        region = best([mrsv, "decode", "--quiet", "--threads", "1", "--region", box, stream, os.path.join(tmp, "r.raw")])
+        _, _, err = run([mrsv, "decode", "--threads", "1", "--region", box, stream, os.path.join(tmp, "r.raw")])
+        read = re.search(r"(\d+) of (\d+) bytes read", err)
+        print(f"decode 512 x 512 region {box}: {1000 * region:.0f} ms, {whole1 / region:.0f}x faster than the "
+              f"whole (1 thread); {int(read.group(1)) / 2**10:.0f} KiB of {int(read.group(2)) / 2**20:.1f} MiB read")
+        # OpenJPEG: a tiled JPEG 2000 at the same rate, the same window.
+        j2k = os.path.join(tmp, "m.j2k")
+        ratio = 16 / bps
+        dt, _, _ = run(["opj_compress", "-i", raw, "-o", j2k, "-F", f"{side},{side},1,16,s@1x1", "-t", "256,256",
+                        "-r", f"{ratio:.3f}"])
+        opj = best(["opj_decompress", "-i", j2k, "-o", os.path.join(tmp, "r.raw"), "-d",
+                    f"{x0},{y0},{x0 + 512},{y0 + 512}"], 3)
+        print(f"OpenJPEG (tiled 256, {8 * os.path.getsize(j2k) / side / side:.3f} bits/sample, encode {dt:.0f} s): "
+              f"opj_decompress -d on the same window {1000 * opj:.0f} ms; MRSV region / OpenJPEG speed "
+              f"{opj / region:.2f}x")
+
+        # Out of core: the grid read a row of tiles at a time (peak memory
+        # against the raw size), and MPI ranks (speed-up, same bytes).
+        ooc = os.path.join(tmp, "ooc.mrsv")
+        dt, rss, _ = run([mrsv, "encode", "--quiet", *dims, "--tile", "256", "--max-error", "2", "--bound-route", "residual", "--threads", "2",
+                          "--out-of-core", raw, ooc])
+        print(f"encode --out-of-core, 2 threads: {dt:.1f} s, peak {rss:.0f} MB ({100 * rss / raw_mb:.0f} % of raw); "
+              f"same stream: {open(ooc, 'rb').read() == open(stream, 'rb').read()}")
+        os.remove(ooc)
+        mpi = os.path.join(os.path.dirname(mrsv), "mrsv-mpi")
+        if os.path.exists(mpi):
+            times = {}
+            for np_ in (1, 2):
+                o = os.path.join(tmp, f"mpi{np_}.mrsv")
+                times[np_], _, _ = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi,
+                                        "encode", *dims, "--tile", "256", "--max-error", "2", "--bound-route", "residual", raw, o])
+            same = open(os.path.join(tmp, "mpi2.mrsv"), "rb").read() == open(stream, "rb").read()
+            print(f"mrsv-mpi encode: {times[1]:.1f} s on 1 rank, {times[2]:.1f} s on 2 (speed-up "
+                  f"{times[1] / times[2]:.2f}x); same stream as mrsv encode: {same}")
+            dec = {}
+            for np_ in (1, 2):
+                dec[np_] = best(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi, "decode",
+                                 os.path.join(tmp, "mpi2.mrsv"), os.path.join(tmp, "mpi.raw")], 2)
+            print(f"mrsv-mpi decode: {dec[1]:.2f} s on 1 rank, {dec[2]:.2f} s on 2 (speed-up {dec[1] / dec[2]:.2f}x)")
+        if not args.quick:
+            print("== a 1024^3 CT volume (the bonsai scan mirrored 4 x 4 x 4), 64^3 bricks, out of core")
+            import numpy as np
+            b = np.fromfile(load("ct_bonsai_256x256x256_uint8", tmp), dtype=np.uint8).reshape(256, 256, 256)
+            row = np.concatenate([b, b[:, :, ::-1]] * 2, axis=2)
+            slab = np.concatenate([row, row[:, ::-1, :]] * 2, axis=1)
+            vol = os.path.join(tmp, "bonsai1024.raw")
+            with open(vol, "wb") as f:
+                for k in range(4):
+                    (slab if k % 2 == 0 else slab[::-1]).tofile(f)
+            del b, row, slab
+            vo = os.path.join(tmp, "bonsai1024.mrsv")
+            dt, rss, _ = run([mrsv, "encode", "--quiet", "--dims", "1024,1024,1024", "--type", "uint8", "--tile", "64",
+                              "--step", "2", "--threads", "2", "--out-of-core", vol, vo])
+            print(f"encode --out-of-core --step 2: {dt:.0f} s, peak {rss:.0f} MB ({100 * rss / 1024:.1f} % of the "
+                  f"1024 MiB raw), {8 * os.path.getsize(vo) / 2**30:.3f} bits/sample")
+            r3, _, err = run([mrsv, "decode", "--region", "300,400,500,428,528,628", vo, os.path.join(tmp, "v.raw")])
+            read3 = re.search(r"(\d+) of (\d+) bytes read", err)
+            print(f"decode a 128^3 region: {1000 * r3:.0f} ms, {int(read3.group(1)) / 2**20:.1f} of "
+                  f"{int(read3.group(2)) / 2**20:.1f} MiB read")
+            os.remove(vol)
+        print("== rate-distortion at 1 bit per sample: tiled against untiled")
+        grids = [(n, ["--dims", "1201,1201", "--type", "int16", "--nodata", "-32768"], "256") for n in SRTM]
+        grids.append(("big_tujunga_1197x643_int16le", ["--dims", "1197,643", "--type", "int16"], "256"))
+        if not args.quick:
+            grids.append(("ct_head_stanford_cthead_256x256x99_uint8", ["--dims", "256,256,99", "--type", "uint8"],
+                          "64"))
+        worst = 0
+        for name, opts, tile in grids:
+            path = load(name, tmp)
+            o = os.path.join(tmp, "rd.mrsv")
+            _, _, untiled = run([mrsv, "encode", *opts, "--bits-per-sample", "1", path, o])
+            _, _, tiled = run([mrsv, "encode", *opts, "--bits-per-sample", "1", "--tile", tile, path, o])
+            d = psnr_of(untiled) - psnr_of(tiled)
+            worst = max(worst, d)
+            print(f"{name}: untiled {psnr_of(untiled):.2f} dB, tiled {tile} {psnr_of(tiled):.2f} dB "
+                  f"(loss {d:.2f} dB)")
+        print(f"largest loss from tiling: {worst:.2f} dB (goal: at most 0.3)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

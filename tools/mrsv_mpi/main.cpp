@@ -1,0 +1,384 @@
+// mrsv-mpi: tiled grids (spec 11) encoded and decoded by MPI ranks.
+//
+//   mpirun -np N mrsv-mpi encode --dims X,Y[,Z] --type T --tile S [options] IN.raw OUT.mrsv
+//   mpirun -np N mrsv-mpi decode IN.mrsv OUT.raw
+//
+// encode: each rank reads its rows of tiles from the raw file, codes them,
+// and the ranks agree on the index (every tile's chunk lengths, gathered) and
+// the error figures; then each writes its chunks at their offsets with MPI-IO
+// into one file. The stream is byte-identical to 'mrsv encode --tile' of the
+// same input with the same options, whatever the number of ranks.
+// decode: each rank decodes a band of rows through the tile index (reading
+// only its tiles) and writes it at its place in the raw output with MPI-IO.
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "mrsv/encode.h"
+#include "mrsv/file_io.h"
+#include "mrsv/raw_grid.h"
+#include "mrsv/tiled_grid.h"
+#include "tiles/tile_encoding.h"
+
+namespace mrsv::mpi {
+namespace {
+
+using cli::Args;
+
+const char kHelp[] =
+    "Usage: mpirun -np N mrsv-mpi encode [options] IN.raw OUT.mrsv\n"
+    "       mpirun -np N mrsv-mpi decode IN.mrsv OUT.raw\n"
+    "\n"
+    "Tiled grids (spec 11) coded and decoded by MPI ranks, each working on its own rows of\n"
+    "tiles and writing its part of one file with MPI-IO. The stream is byte-identical to\n"
+    "'mrsv encode --tile' of the same input and options, whatever the number of ranks.\n"
+    "\n"
+    "encode options:\n"
+    "  --dims X[,Y[,Z]]      grid size in samples (IN is headerless raw, x fastest)\n"
+    "  --type T              uint8, int16, uint16, int32, float32, float64\n"
+    "  --endian little|big   byte order of IN (default little)\n"
+    "  --nodata V            integer sample value that marks missing data\n"
+    "  --tile N[,N[,N]]      tile size (required)\n"
+    "  --lossless            every sample exact (the default)\n"
+    "  --max-error D         every sample within D (integer samples)\n"
+    "  --bound-route R       residual, predictive or auto (default): as mrsv encode\n"
+    "  --step S              quantiser step S in sample units\n"
+    "  --levels L            at most L decomposition levels per axis\n"
+    "  --progressive         the most levels --levels allows in every tile\n"
+    "  --threads N           threads per rank (default 1)\n"
+    "  --meta KEY=VALUE      a meta entry; repeatable\n"
+    "\n"
+    "decode: OUT.raw receives the samples, little-endian, x fastest.\n"
+    "Exit status: 0 done, 1 invalid input, 2 usage error, 3 file error.\n";
+
+int rank = 0, ranks = 1;
+
+// Every rank agrees on failure: the first rank's message (by rank number)
+// is printed once, by that rank, and every rank returns the same status.
+int agree(int status, const std::string& message) {
+  int worst = 0;
+  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (worst == 0) return 0;
+  int mine = status != 0 ? rank : ranks, first = ranks;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (rank == first) std::fprintf(stderr, "mrsv-mpi: %s\n", message.c_str());
+  return worst;
+}
+
+std::vector<uint32_t> parseSizes(const std::string& text, std::string* error) {
+  std::vector<uint32_t> out;
+  for (size_t start = 0; start <= text.size();) {
+    size_t comma = std::min(text.find(',', start), text.size());
+    uint64_t v = 0;
+    if (!cli::parseUint64(text.substr(start, comma - start), &v) || v < 1 || v > kMaxGridAxis) {
+      *error = "'" + text + "': sizes are whole numbers from 1 to " + std::to_string(kMaxGridAxis);
+      return {};
+    }
+    out.push_back(static_cast<uint32_t>(v));
+    start = comma + 1;
+  }
+  return out;
+}
+
+// MPI-IO to a temporary name beside `path`, renamed by rank 0 when every rank
+// has written; removed when any has failed.
+struct SharedFile {
+  MPI_File file = MPI_FILE_NULL;
+  std::string path, temp;
+  bool open(const std::string& out) {
+    path = out;
+    temp = out + ".mrsv-mpi-tmp";
+    if (rank == 0) std::remove(temp.c_str());
+    MPI_Barrier(MPI_COMM_WORLD);
+    return MPI_File_open(MPI_COMM_WORLD, temp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file) ==
+           MPI_SUCCESS;
+  }
+  bool writeAt(uint64_t offset, const uint8_t* data, uint64_t size) {
+    while (size > 0) {
+      const int n = static_cast<int>(std::min<uint64_t>(size, 1u << 30));
+      MPI_Status st;
+      if (MPI_File_write_at(file, static_cast<MPI_Offset>(offset), data, n, MPI_BYTE, &st) != MPI_SUCCESS)
+        return false;
+      offset += n;
+      data += n;
+      size -= n;
+    }
+    return true;
+  }
+  // Collective: closes, then renames (status 0) or removes the file.
+  int finish(int status) {
+    if (file != MPI_FILE_NULL) MPI_File_close(&file);
+    if (rank == 0) {
+      if (status == 0 && std::rename(temp.c_str(), path.c_str()) != 0) status = cli::kExitIo;
+      if (status != 0) std::remove(temp.c_str());
+    }
+    MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return status;
+  }
+};
+
+int runEncode(int argc, char** argv) {
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv,
+                  {{"dims", "type", "endian", "nodata", "tile", "max-error", "bound-route", "step", "levels", "threads"},
+                   {"lossless", "progressive", "help"},
+                   {"meta"}},
+                  &error))
+    return agree(cli::kExitUsage, error);
+  if (args.flag("help")) {
+    if (rank == 0) std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (args.positional().size() != 2 || !args.has("dims") || !args.has("type") || !args.has("tile"))
+    return agree(cli::kExitUsage, "encode needs --dims, --type, --tile, IN.raw and OUT.mrsv (see --help)");
+  const std::string& in = args.positional()[0];
+  const std::string& out = args.positional()[1];
+  GridHeader header;
+  if (std::string problem = parseDims(args.value("dims"), &header); !problem.empty())
+    return agree(cli::kExitUsage, "--dims: " + problem);
+  if (!parseSampleType(args.value("type"), &header.sample_type))
+    return agree(cli::kExitUsage, "--type '" + args.value("type") + "' is not a sample type");
+  if (args.has("nodata")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(args.value("nodata").c_str(), &end, 10);
+    const size_t bytes = sampleSize(header.sample_type);
+    if (*end != '\0' || header.sample_type == SampleType::kFloat32 || header.sample_type == SampleType::kFloat64)
+      return agree(cli::kExitUsage, "--nodata takes an integer for integer samples");
+    header.nodata_bits = static_cast<uint64_t>(v) & (bytes == 8 ? ~uint64_t{0} : (uint64_t{1} << (8 * bytes)) - 1);
+    header.grid_flags |= kGridFlagHasNodata;
+  }
+  const std::vector<uint32_t> sizes = parseSizes(args.value("tile"), &error);
+  if (sizes.empty() || (sizes.size() != 1 && sizes.size() != header.num_dims))
+    return agree(cli::kExitUsage, "--tile: " + (error.empty() ? "give 1 size or one per axis" : error));
+  TiledEncodeOptions tiled;
+  for (int a = 0; a < 3; ++a) tiled.tile_size[a] = a >= header.num_dims ? 1 : sizes[std::min<size_t>(a, sizes.size() - 1)];
+  tiled.threads = 1;
+  uint64_t number = 0;
+  if (args.has("threads")) {
+    if (!cli::parseUint64(args.value("threads"), &number) || number < 1 || number > 1024)
+      return agree(cli::kExitUsage, "--threads must be 1 to 1024");
+    tiled.threads = static_cast<int>(number);
+  }
+  WaveletEncodeOptions options;
+  options.max_error = 0;
+  if (args.has("max-error") && !cli::parseDouble(args.value("max-error"), &options.max_error))
+    return agree(cli::kExitUsage, "--max-error is not a number");
+  if (args.has("bound-route")) {
+    const std::string& route = args.value("bound-route");
+    if (route == "residual") options.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+    else if (route == "predictive") options.bound_route = WaveletEncodeOptions::BoundRoute::kPredictive;
+    else if (route != "auto") return agree(cli::kExitUsage, "--bound-route must be residual, predictive or auto");
+  }
+  if (args.has("step")) {
+    options.max_error = -1;
+    if (!cli::parseDouble(args.value("step"), &options.step) || !(options.step > 0))
+      return agree(cli::kExitUsage, "--step must be a positive number");
+  }
+  if (args.has("levels")) {
+    if (!cli::parseUint64(args.value("levels"), &number) || number > 16)
+      return agree(cli::kExitUsage, "--levels must be 0 to 16");
+    options.max_levels = static_cast<int>(number);
+  }
+  options.progressive = args.flag("progressive");
+  Metadata metadata;
+  if (!cli::parseMetaOptions(args, &metadata, &error)) return agree(cli::kExitUsage, error);
+  TilingHeader tiling;
+  std::copy(tiled.tile_size, tiled.tile_size + 3, tiling.tile_size);
+  if (std::string problem = gridHeaderProblem(header); !problem.empty()) return agree(cli::kExitUsage, problem);
+  if (std::string problem = tilingProblem(tiling, header); !problem.empty()) return agree(cli::kExitUsage, problem);
+  std::unique_ptr<GridBoxReader> reader = openRawBoxReader(
+      in, header, args.has("endian") && args.value("endian") == "big" ? Endian::kBig : Endian::kLittle, &error);
+  if (int s = agree(reader ? 0 : cli::kExitIo, error)) return s;
+
+  // This rank's rows of tiles: row r (tiles along x) goes to rank r % ranks.
+  GridHeader h = header;
+  h.coding = GridCoding::kTiled;
+  const TileGrid tiles = TileGrid::make(h, tiling);
+  const uint64_t n = tiles.tileCount();
+  const size_t bytes = sampleSize(h.sample_type);
+  std::vector<TileResult> mine(n);
+  ErrorTally local;
+  int status = 0;
+  for (uint64_t row = rank; row < uint64_t{tiles.count[1]} * tiles.count[2] && status == 0; row += ranks) {
+    const uint64_t first = row * tiles.count[0];
+    uint32_t origin[3], size[3];
+    tiles.box(first, origin, size);
+    origin[0] = 0;
+    size[0] = h.size_x;
+    std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * bytes);
+    if (!reader->read(origin, size, box.data(), &error)) {
+      status = cli::kExitIo;
+      error = in + ": " + error;
+      break;
+    }
+    local.addSamples(h, box.data(), box.size());
+    for (uint64_t t = first; t < first + tiles.count[0]; ++t) {
+      mine[t] = encodeTileSamples(tiles, t, tileSamplesFrom(tiles, t, box.data(), origin, size), options);
+      if (!mine[t].error.ok()) {
+        status = cli::kExitInvalidData;
+        error = in + ": " + mine[t].error.field + ": " + mine[t].error.message;
+        break;
+      }
+    }
+  }
+  if (int s = agree(status, error)) return s;
+
+  // Every tile's chunk count, types, lengths and errors, on every rank (each
+  // tile was coded by one rank: the others add zeros).
+  std::vector<int> counts(n), all_counts(n);
+  std::vector<double> sse(n), max_abs(n), levels(n);
+  for (uint64_t t = 0; t < n; ++t) {
+    counts[t] = static_cast<int>(mine[t].chunks.size());
+    sse[t] = mine[t].sse;
+    max_abs[t] = mine[t].max_abs;
+    levels[t] = mine[t].levels;
+  }
+  MPI_Allreduce(counts.data(), all_counts.data(), static_cast<int>(n), MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, sse.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, max_abs.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, levels.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  std::vector<uint64_t> first(n + 1, 0);
+  for (uint64_t t = 0; t < n; ++t) first[t + 1] = first[t] + all_counts[t];
+  std::vector<uint32_t> lengths(first[n], 0);
+  for (uint64_t t = 0; t < n; ++t)
+    for (size_t j = 0; j < mine[t].chunks.size(); ++j)
+      lengths[first[t] + j] = static_cast<uint32_t>(mine[t].chunks[j].second.size());
+  MPI_Allreduce(MPI_IN_PLACE, lengths.data(), static_cast<int>(lengths.size()), MPI_UINT32_T, MPI_SUM,
+                MPI_COMM_WORLD);
+  ErrorTally tally;
+  MPI_Allreduce(&local.valid, &tally.valid, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&local.lo, &tally.lo, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&local.hi, &tally.hi, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  // In tile order, as one process adds them, so the recorded figures agree to the bit.
+  for (uint64_t t = 0; t < n; ++t) {
+    TileResult r;
+    r.sse = sse[t];
+    r.max_abs = max_abs[t];
+    r.levels = static_cast<int>(levels[t]);
+    tally.addTile(r);
+  }
+  std::vector<std::vector<uint32_t>> per_tile(n);
+  for (uint64_t t = 0; t < n; ++t) per_tile[t].assign(lengths.begin() + first[t], lengths.begin() + first[t + 1]);
+  const std::vector<uint8_t> index = serializeTileIndex(per_tile);
+  WaveletEncodeReport report;
+  const std::vector<uint8_t> head = tiledStreamHead(h, tally.record(metadata, options, &report), tiling, index);
+  ChunkView tidx{kChunkTileIndex, static_cast<uint32_t>(index.size()), 0,
+                 head.size() - kChunkHeaderSize - index.size() - kChunkCrcSize, index.data()};
+  TileIndex placed;
+  if (Error e = parseTileIndex(tidx, n, &placed); !e.ok()) return agree(cli::kExitInvalidData, e.message);
+
+  SharedFile file;
+  if (int s = agree(file.open(out) ? 0 : cli::kExitIo, out + ": cannot create the output with MPI-IO")) return s;
+  bool ok = true;
+  if (rank == 0) {
+    const std::vector<uint8_t> end = framedChunk(kChunkEnd, nullptr, 0);
+    ok = file.writeAt(0, head.data(), head.size()) && file.writeAt(placed.end_offset, end.data(), end.size());
+  }
+  for (uint64_t t = 0; t < n && ok; ++t)
+    for (size_t j = 0; j < mine[t].chunks.size() && ok; ++j) {
+      const auto& [type, payload] = mine[t].chunks[j];
+      const std::vector<uint8_t> framed = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
+      ok = file.writeAt(placed.chunk_offset[first[t] + j], framed.data(), framed.size());
+    }
+  status = agree(ok ? 0 : cli::kExitIo, out + ": an MPI-IO write failed");
+  status = file.finish(status);
+  if (status == 0 && rank == 0)
+    std::fprintf(stderr, "mrsv-mpi encode: %s: %llu bytes, %.4f bits/sample, max error %g, %d ranks\n", out.c_str(),
+                 static_cast<unsigned long long>(placed.end_offset + kChunkHeaderSize + kChunkCrcSize),
+                 8.0 * static_cast<double>(placed.end_offset + 12) / static_cast<double>(h.sampleCount()),
+                 report.max_abs_error, ranks);
+  return status;
+}
+
+int runDecode(int argc, char** argv) {
+  Args args;
+  std::string error;
+  if (!args.parse(argc, argv, {{"threads"}, {"help"}, {}}, &error)) return agree(cli::kExitUsage, error);
+  if (args.flag("help")) {
+    if (rank == 0) std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (args.positional().size() != 2) return agree(cli::kExitUsage, "decode needs IN.mrsv and OUT.raw");
+  const std::string& in = args.positional()[0];
+  const std::string& out = args.positional()[1];
+  std::unique_ptr<ByteSource> source = openFileByteSource(in, &error);
+  if (int s = agree(source ? 0 : cli::kExitIo, in + ": " + error)) return s;
+  // The grid header first: a one-sample region of the first tile.
+  DecodedGrid probe;
+  GridRegion one;
+  Error e = decodeGridRegion(*source, one, DecodeOptions{}, &probe);
+  if (int s = agree(e.ok() ? 0 : cli::kExitInvalidData, in + ": " + e.describe())) return s;
+  const GridHeader& h = probe.header;
+  if (int s = agree(h.coding == GridCoding::kTiled ? 0 : cli::kExitUsage, in + ": not a tiled grid (encode --tile)"))
+    return s;
+  // Bands of the slowest axis with more than one tile: contiguous in OUT.
+  const int axis = h.num_dims == 3 && (h.size_z + probe.tile_size[2] - 1) / probe.tile_size[2] > 1 ? 2
+                   : h.num_dims >= 2 ? 1 : 0;
+  const uint32_t sizes[3] = {h.size_x, h.size_y, h.size_z};
+  const uint32_t rows = (sizes[axis] + probe.tile_size[axis] - 1) / probe.tile_size[axis];
+  const uint32_t per_rank = (rows + ranks - 1) / ranks;
+  GridRegion band;
+  for (int a = 0; a < 3; ++a) band.hi[a] = sizes[a];
+  band.lo[axis] = std::min(sizes[axis], rank * per_rank * probe.tile_size[axis]);
+  band.hi[axis] = std::min<uint64_t>(sizes[axis], uint64_t{rank + 1} * per_rank * probe.tile_size[axis]);
+  DecodedGrid part;
+  DecodeOptions options;
+  if (args.has("threads")) {
+    uint64_t threads = 0;
+    if (!cli::parseUint64(args.value("threads"), &threads) || threads < 1 || threads > 1024)
+      return agree(cli::kExitUsage, "--threads must be 1 to 1024");
+    options.threads = static_cast<int>(threads);
+  }
+  int status = 0;
+  if (band.lo[axis] < band.hi[axis]) {
+    e = decodeGridRegion(*source, band, options, &part);
+    if (!e.ok()) {
+      status = cli::kExitInvalidData;
+      error = in + ": " + e.describe();
+    } else if (!part.has_samples) {
+      status = cli::kExitInvalidData;
+      error = in + ": the stream ends before its samples";
+    }
+  }
+  if (int s = agree(status, error)) return s;
+  uint64_t stride = sampleSize(h.sample_type);
+  for (int a = 0; a < axis; ++a) stride *= sizes[a];
+  SharedFile file;
+  if (int s = agree(file.open(out) ? 0 : cli::kExitIo, out + ": cannot create the output with MPI-IO")) return s;
+  const bool ok = part.samples.empty() || file.writeAt(band.lo[axis] * stride, part.samples.data(), part.samples.size());
+  status = file.finish(agree(ok ? 0 : cli::kExitIo, out + ": an MPI-IO write failed"));
+  if (status == 0 && rank == 0)
+    std::fprintf(stderr, "mrsv-mpi decode: %s: %ux%ux%u, %d ranks\n", out.c_str(), sizes[0], sizes[1], sizes[2], ranks);
+  return status;
+}
+
+}  // namespace
+}  // namespace mrsv::mpi
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &mrsv::mpi::rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &mrsv::mpi::ranks);
+  int status = 0;
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command == "encode") {
+    status = mrsv::mpi::runEncode(argc - 2, argv + 2);
+  } else if (command == "decode") {
+    status = mrsv::mpi::runDecode(argc - 2, argv + 2);
+  } else if (command == "--help" || command == "-h") {
+    if (mrsv::mpi::rank == 0) std::fputs(mrsv::mpi::kHelp, stdout);
+  } else {
+    if (mrsv::mpi::rank == 0) std::fputs(mrsv::mpi::kHelp, stderr);
+    status = mrsv::cli::kExitUsage;
+  }
+  MPI_Finalize();
+  return status;
+}
