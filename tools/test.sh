@@ -5,11 +5,11 @@
 #   2. the unit and replay tests again under AddressSanitizer + UBSan;
 #   3. the decode library built alone (no CGAL, no TetGen) and its tests;
 #   4. a short libFuzzer run of every fuzz target under ASan + UBSan
-#      (MRSV_FUZZ_SECONDS per target, default 30).
+#      (MRSV_FUZZ_SECONDS per target, default 20: ten targets keep CI under 30 minutes).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 jobs=$(nproc)
-fuzz_seconds=${MRSV_FUZZ_SECONDS:-30}
+fuzz_seconds=${MRSV_FUZZ_SECONDS:-20}
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 
