@@ -213,6 +213,12 @@ expect 0 "$mrsv" decode --quiet "$work/cow.mrsv" "$work/cow_file.ply"
 if cmp -s "$work/cow_pipe.ply" "$work/cow_file.ply" && [ -e "$work/cow_0.off" ]; then ok; else bad "PM decode - or its levels"; fi
 last=$(ls "$work"/cow_[0-9]*.off | sed 's/.*cow_\([0-9]*\)\.off/\1/' | sort -n | tail -1)
 if [ "$(sed -n 2p "$work/cow_$last.off" | cut -d' ' -f1)" = 2904 ]; then ok; else bad "the last PM level lacks vertices"; fi
+tiled="$vectors/tiled_valid/terrain_one_tile.mrsv"
+expect 0 "$mrsv" decode --quiet "$tiled" "$work/tl_file.raw"
+expect 0 "$mrsv" decode --quiet - "$work/tl_pipe.raw" < <(cat "$tiled")
+expect 0 "$mrsv" decode --quiet --region 0,0,4,4 - "$work/tl_region.raw" < <(cat "$tiled")
+expect 0 "$mrsv" decode --quiet --region 0,0,4,4 "$tiled" "$work/tl_region_file.raw"
+if cmp -s "$work/tl_file.raw" "$work/tl_pipe.raw" && cmp -s "$work/tl_region.raw" "$work/tl_region_file.raw"; then ok; else bad "a tiled grid from standard input differs"; fi
 expect 0 "$mrsv" decode --quiet - "$work/hand_pipe.vtu" --levels-out "$work/hand_{level}.vtu" < <(cat "$work/hand.mrsv")
 expect 0 "$mrsv" decode --quiet "$work/hand.mrsv" "$work/hand_file.vtu"
 if cmp -s "$work/hand_pipe.vtu" "$work/hand_file.vtu" && [ -e "$work/hand_0.vtu" ] && [ -e "$work/hand_1.vtu" ]; then ok; else bad "PT decode - or its levels"; fi
