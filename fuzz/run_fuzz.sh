@@ -9,7 +9,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=$1 seconds=$2
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode fuzz_pt_decode fuzz_reconstruct fuzz_mesh_read fuzz_tet_read fuzz_grid_read)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_container fuzz_grid_decode fuzz_pm_decode fuzz_pt_decode fuzz_stream_decode fuzz_reconstruct fuzz_mesh_read fuzz_tet_read fuzz_grid_read)
 findings=$here/findings
 mkdir -p "$findings"
 scratch=$(mktemp -d)
@@ -25,7 +25,7 @@ for t in "${targets[@]}"; do
       "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
       "$here/../conformance/vectors/coded_valid" "$here/../conformance/vectors/coded_invalid" \
       "$here/../conformance/vectors/tiled_valid" "$here/../conformance/vectors/tiled_invalid" \
-      "$here/corpus" "$here/corpus_mesh" "$here/corpus_pt" "$here/corpus_tet" "$here/corpus_grid" >"$scratch/$t.log" 2>&1; then
+      "$here/corpus" "$here/corpus_mesh" "$here/corpus_pt" "$here/corpus_tet" "$here/corpus_grid" "$here/corpus_stream" >"$scratch/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
     tail -40 "$scratch/$t.log"
     status=1

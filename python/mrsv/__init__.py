@@ -10,6 +10,7 @@ has x varying fastest, the format's own sample order; values that list axes
     mrsv.check("copy.mrsv")
     h5file.create_dataset("dem", data=dem, chunks=(256, 256), **mrsv.hdf5_filter("max_error", 1))
     pm = mrsv.ProgressiveMesh("bunny.mrsv"); pm.level = 100; pm.vertices, pm.faces
+    d = mrsv.StreamDecoder(); d.feed(piece); ...; d.finish(); d.samples()
 
 Broken streams raise mrsv.Error (code, name, offset, field, rule); bad
 arguments raise TypeError or ValueError; unreadable files raise OSError.
@@ -19,6 +20,7 @@ from ._mrsv import (
     Error,
     ProgressiveMesh,
     ProgressiveTetMesh,
+    StreamDecoder,
     check,
     decode,
     encode,
@@ -36,6 +38,7 @@ __all__ = [
     "HDF5_FILTER_ID",
     "ProgressiveMesh",
     "ProgressiveTetMesh",
+    "StreamDecoder",
     "check",
     "decode",
     "encode",

@@ -26,6 +26,7 @@ void registerCheck(py::module_& m);
 void registerMesh(py::module_& m);
 void registerTets(py::module_& m);
 void registerReconstruct(py::module_& m);
+void registerStream(py::module_& m);
 
 // Raises mrsv.Error for a broken stream rule. The GIL must be held.
 [[noreturn]] void raiseStreamError(const Error& error);

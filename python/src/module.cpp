@@ -11,4 +11,5 @@ PYBIND11_MODULE(_mrsv, m) {
   mrsv::python::registerMesh(m);
   mrsv::python::registerTets(m);
   mrsv::python::registerReconstruct(m);
+  mrsv::python::registerStream(m);
 }

@@ -186,6 +186,42 @@ expect 0 "$mrsv" decode --quiet --canonical --fraction "$(python3 -c 'print(3000
 if cmp -s "$work/hand3000a.canon" "$work/hand3000b.canon"; then ok; else bad "PT --tets 3000 and the same level by --fraction differ"; fi
 expect 0 "$mrsv" decode --quiet --tets 0 "$work/hand.mrsv" "$work/hand0.vtu"
 expect 0 "$mrsv" decode --vertices 2000 "$work/hand.mrsv" "$work/hand2000.vtu"; stderr_has "2000 vertices"
+# Streaming decode (spec 2.7): standard input, decoded as it arrives, each level
+# written as soon as it is complete; the same samples and errors as from a file.
+# (Input through a pipe: < <(cat ...) keeps the counters in this shell.)
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --progressive --psnr 60 "$crop" "$work/sp.mrsv"
+expect 0 "$mrsv" decode --quiet "$work/sp.mrsv" "$work/sp_file.nrrd"
+expect 0 "$mrsv" decode - "$work/sp_pipe.nrrd" --levels-out "$work/sp_{level}.nrrd" < <(cat "$work/sp.mrsv")
+stderr_has "sp_4.nrrd: level 4, 8x8x1"; stderr_has "sp_0.nrrd: level 0, 128x128x1"
+if cmp -s "$work/sp_file.nrrd" "$work/sp_pipe.nrrd" && cmp -s "$work/sp_file.nrrd" "$work/sp_0.nrrd"; then ok; else bad "decode - differs from the file's decode"; fi
+expect 0 "$mrsv" decode --quiet --levels 2 "$work/sp.mrsv" "$work/sp_file2.nrrd"
+if cmp -s "$work/sp_file2.nrrd" "$work/sp_2.nrrd"; then ok; else bad "--levels-out level 2 differs from --levels 2"; fi
+expect 0 "$mrsv" decode --quiet --levels 1 --levels-out "$work/spx.raw" "$work/sp.mrsv" "$work/sp1.raw"
+if [ -e "$work/spx-L4.raw" ] && cmp -s "$work/sp1.raw" "$work/spx-L1.raw" && [ ! -e "$work/spx-L0.raw" ]; then ok; else bad "--levels-out without {level} or with --levels"; fi
+if ls "$work" | grep -q '\.tmp'; then bad "a temporary file was left"; else ok; fi
+head -c 700 "$work/sp.mrsv" >"$work/sp_cut.mrsv"
+expect 1 "$mrsv" decode "$work/sp_cut.mrsv" "$work/x.raw"; sed 's/^.*: offset/offset/' "$work/stderr" >"$work/err_file"
+expect 1 "$mrsv" decode - "$work/x.raw" < <(head -c 700 "$work/sp.mrsv"); stderr_has "standard input: offset"; one_line_stderr
+if sed 's/^.*: offset/offset/' "$work/stderr" | cmp -s - "$work/err_file"; then ok; else bad "decode - of a truncated stream gave another error"; fi
+if [ ! -e "$work/x.raw" ]; then ok; else bad "decode - left an output for a truncated stream"; fi
+expect 0 "$mrsv" decode --quiet --bytes 700 "$work/sp.mrsv" "$work/sp700a.raw"
+expect 0 "$mrsv" decode --quiet --bytes 700 - "$work/sp700b.raw" < <(cat "$work/sp.mrsv")
+if cmp -s "$work/sp700a.raw" "$work/sp700b.raw"; then ok; else bad "--bytes on standard input differs"; fi
+expect 1 "$mrsv" decode - "$work/x.raw" < <(cat "$vectors/invalid/bad_checksum.mrsv"); stderr_has "offset 568: E113"
+expect 0 "$mrsv" decode --quiet - "$work/cow_pipe.ply" --levels-out "$work/cow_{level}.off" < <(cat "$work/cow.mrsv")
+expect 0 "$mrsv" decode --quiet "$work/cow.mrsv" "$work/cow_file.ply"
+if cmp -s "$work/cow_pipe.ply" "$work/cow_file.ply" && [ -e "$work/cow_0.off" ]; then ok; else bad "PM decode - or its levels"; fi
+last=$(ls "$work"/cow_[0-9]*.off | sed 's/.*cow_\([0-9]*\)\.off/\1/' | sort -n | tail -1)
+if [ "$(sed -n 2p "$work/cow_$last.off" | cut -d' ' -f1)" = 2904 ]; then ok; else bad "the last PM level lacks vertices"; fi
+tiled="$vectors/tiled_valid/terrain_one_tile.mrsv"
+expect 0 "$mrsv" decode --quiet "$tiled" "$work/tl_file.raw"
+expect 0 "$mrsv" decode --quiet - "$work/tl_pipe.raw" < <(cat "$tiled")
+expect 0 "$mrsv" decode --quiet --region 0,0,4,4 - "$work/tl_region.raw" < <(cat "$tiled")
+expect 0 "$mrsv" decode --quiet --region 0,0,4,4 "$tiled" "$work/tl_region_file.raw"
+if cmp -s "$work/tl_file.raw" "$work/tl_pipe.raw" && cmp -s "$work/tl_region.raw" "$work/tl_region_file.raw"; then ok; else bad "a tiled grid from standard input differs"; fi
+expect 0 "$mrsv" decode --quiet - "$work/hand_pipe.vtu" --levels-out "$work/hand_{level}.vtu" < <(cat "$work/hand.mrsv")
+expect 0 "$mrsv" decode --quiet "$work/hand.mrsv" "$work/hand_file.vtu"
+if cmp -s "$work/hand_pipe.vtu" "$work/hand_file.vtu" && [ -e "$work/hand_0.vtu" ] && [ -e "$work/hand_1.vtu" ]; then ok; else bad "PT decode - or its levels"; fi
 printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1\n1 1 1 2 0\n' >"$work/bad.mesh"
 expect 1 "$mrsv" tetrahedralize "$work/bad.mesh" "$work/x.vtu"; stderr_has "bad.mesh:8: tet 1: vertex index 2 is out of range"; one_line_stderr
 if [ ! -e "$work/x.vtu" ]; then ok; else bad "a failed tetrahedralize left an output"; fi

@@ -126,7 +126,7 @@ struct ReplayCoder {
   bool overrun() const { return false; }
 };
 
-// The decoder's loop over the records of every payload (as decodeChunks() in
+// The decoder's loop over the records of every payload (as PmSteps::batch() in
 // pm_decode.cpp runs it, without its checks: the stream is our own), each
 // payload through the coder that coderFor(payload) makes.
 template <class CoderFor>

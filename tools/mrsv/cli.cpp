@@ -73,7 +73,7 @@ const std::vector<std::string>& Args::values(const std::string& name) const {
 
 int reportError(const char* command, const std::string& file, const Error& error) {
   std::fprintf(stderr, "mrsv %s: %s: %s\n", command, file.c_str(), error.describe().c_str());
-  return kExitInvalidData;
+  return error.status == Status::kIoError ? kExitIo : kExitInvalidData;
 }
 
 int fail(const char* command, const std::string& message, int exit_code) {

@@ -1,6 +1,8 @@
 // mrsv decode: an MRSV file (or a prefix of one) to raw samples.
 #include <algorithm>
+#include <climits>
 #include <cstdio>
+#include <functional>
 #include <thread>
 #include <utility>
 
@@ -12,12 +14,20 @@
 #include "mrsv/progressive_mesh.h"
 #include "mrsv/progressive_tet_mesh.h"
 #include "mrsv/raw_grid.h"
+#include "mrsv/mesh_formats.h"
+#include "mrsv/stream_decoder.h"
+#include "mrsv/tet_formats.h"
+#include "stream_input.h"
 
 namespace mrsv::cli {
 namespace {
 
 const char kHelp[] =
     "Usage: mrsv decode [options] IN.mrsv OUT\n"
+    "\n"
+    "IN '-' reads standard input (cat f.mrsv | mrsv decode - out.nrrd, curl URL | mrsv\n"
+    "decode - out.nrrd). The input is decoded while it arrives: each chunk once, when\n"
+    "it is complete (spec 2.7).\n"
     "\n"
     "A PM stream (spec 6) decodes to a mesh: OUT.obj, OUT.ply (binary) or OUT.off, at the\n"
     "level chosen by one of:\n"
@@ -54,12 +64,53 @@ const char kHelp[] =
     "  --threads N           tiles decoded at once (default: the number of cores)\n"
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived: the complete chunks among them are decoded\n"
+    "  --levels-out PATTERN  also write each level as soon as its bytes have arrived:\n"
+    "                        PATTERN with {level} replaced by the level number, or\n"
+    "                        without {level}, '-L<level>' put before its extension.\n"
+    "                        Grids: level K is the grid K levels above the finest\n"
+    "                        (as --levels K), from the coarsest to the one OUT holds.\n"
+    "                        PM and PT streams: level 0 is the base mesh, level K the\n"
+    "                        mesh after K batches of splits; format as for OUT.\n"
+    "                        Each file is written under a temporary name and renamed\n"
     "  --quiet               no progress or notes on stderr\n"
     "  --help                this text\n"
+    "\n"
     "\n"
     "A file that ends after a complete chunk but before MEND is a prefix and decodes\n"
     "to what its complete chunks hold. OUT is written under a temporary name and renamed\n"
     "when complete. Exit status: 0 done, 1 invalid stream, 2 usage error, 3 file error.\n";
+
+// PATTERN's file for `level` (see --levels-out).
+std::string levelPath(const std::string& pattern, int level) {
+  const std::string number = std::to_string(level);
+  const size_t at = pattern.find("{level}");
+  if (at != std::string::npos) return pattern.substr(0, at) + number + pattern.substr(at + 7);
+  const size_t slash = pattern.find_last_of('/');
+  size_t dot = pattern.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = pattern.size();
+  return pattern.substr(0, dot) + "-L" + number + pattern.substr(dot);
+}
+
+Error ioError(const std::string& message) { return Error{Status::kIoError, 0, "--levels-out", message}; }
+
+// Feeds `head` and then the rest of `input` to `decoder`, calling
+// `on_units` after each piece, then finishes it.
+Error decodeInput(StreamInput* input, const std::vector<uint8_t>& head, StreamDecoder* decoder,
+                  const std::function<Error()>& on_units) {
+  if (Error e = decoder->feed(head.data(), head.size()); !e.ok()) return e;
+  if (Error e = on_units(); !e.ok()) return e;
+  std::vector<uint8_t> piece;
+  std::string error;
+  for (;;) {
+    if (!input->next(&piece, &error)) return Error{Status::kIoError, decoder->bytesFed(), "input", error};
+    if (piece.empty()) break;
+    if (Error e = decoder->feed(piece.data(), piece.size()); !e.ok()) return e;
+    if (Error e = on_units(); !e.ok()) return e;
+  }
+  Error e = input->cutShort() ? decoder->finishPrefix() : decoder->finish();
+  if (e.ok()) e = on_units();
+  return e;
+}
 
 // "X0,Y0[,Z0],X1,Y1[,Z1]": a half-open box of samples.
 bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
@@ -93,7 +144,7 @@ int runDecode(int argc, char** argv) {
   const char* cmd = "decode";
   Args args;
   std::string error;
-  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "faces", "tets", "vertices", "fraction", "region", "threads"}, {"canonical", "quiet", "help"}, {}}, &error))
+  if (!args.parse(argc, argv, {{"endian", "bytes", "levels", "levels-out", "faces", "tets", "vertices", "fraction", "region", "threads"}, {"canonical", "quiet", "help"}, {}}, &error))
     return fail(cmd, error + " (see 'mrsv decode --help')", kExitUsage);
   if (args.flag("help")) {
     std::fputs(kHelp, stdout);
@@ -116,7 +167,10 @@ int runDecode(int argc, char** argv) {
   if (args.has("levels") && (!parseUint64(args.value("levels"), &levels) || levels > 16))
     return fail(cmd, "--levels '" + args.value("levels") + "' is not a whole number from 0 to 16",
                 kExitUsage);
-  if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+  const std::string levels_out = args.has("levels-out") ? args.value("levels-out") : "";
+  if (args.has("levels-out") && levels_out.empty()) return fail(cmd, "--levels-out needs a PATTERN", kExitUsage);
+  if (in != "-" && isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
+  const bool quiet = args.flag("quiet");
   GridRegion region;
   const bool by_region = args.has("region");
   if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
@@ -127,41 +181,129 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, "--threads must be a whole number from 1 to 1024", kExitUsage);
     threads = static_cast<int>(n);
   }
-  if (by_region && !args.has("bytes")) return runRegionDecode(args, in, out, region, threads, endian, levels);
+  if (by_region && !args.has("bytes") && in != "-")
+    return runRegionDecode(args, in, out, region, threads, endian, levels);
 
-  Progress progress("decode", args.flag("quiet"));
-  std::vector<uint8_t> bytes;
-  if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
+  Progress progress("decode", quiet);
+  StreamInput input;
+  if (!input.open(in, byte_limit, &error)) return fail(cmd, error, kExitIo);
+  if (by_region) {  // a prefix (--bytes) or standard input: a region of the bytes in memory
+    std::vector<uint8_t> bytes, piece;
+    for (;;) {
+      if (!input.next(&piece, &error)) return fail(cmd, error, kExitIo);
+      if (piece.empty()) break;
+      bytes.insert(bytes.end(), piece.begin(), piece.end());
+    }
+    MemoryByteSource source(bytes.data(), bytes.size());
+    return runRegionDecode(args, input.name(), out, region, threads, endian, levels, &source);
+  }
+  // The content header's type (bytes 12 to 15) says which decoder to run.
+  std::vector<uint8_t> head, piece;
+  while (head.size() < kFileHeaderSize + 4) {
+    if (!input.next(&piece, &error)) return fail(cmd, error, kExitIo);
+    if (piece.empty()) break;
+    head.insert(head.end(), piece.begin(), piece.end());
+  }
   DecodeOptions options;
   options.reduce_levels = static_cast<int>(levels);
   options.threads = threads;
-  if (byte_limit < bytes.size()) {
-    bytes.resize(static_cast<size_t>(byte_limit));
-    options.container.allow_partial_tail = true;
+
+  if (isProgressiveMeshStream(head.data(), head.size())) {
+    const MeshDecodeFn decode = [&](const DecodeOptions& o, DecodedMesh* decoded) {
+      StreamDecoder decoder(o, StreamContent::kMesh);
+      Error e = decodeInput(&input, head, &decoder, [&]() -> Error {
+        for (const StreamUnit& unit : decoder.takeUnits()) {
+          if (levels_out.empty() || (unit.chunk_type != kChunkBaseMesh && unit.chunk_type != kChunkSplits)) continue;
+          const int level = unit.chunk_type == kChunkBaseMesh ? 0 : static_cast<int>(unit.index) + 1;
+          const std::string path = levelPath(levels_out, level);
+          std::vector<uint8_t> bytes;
+          std::string why;
+          if (!encodeMeshFile(path, decoder.mesh().mesh.mesh(), &bytes, &why)) return ioError(why);
+          if (!writeFileAtomically(path, bytes, &why)) return ioError(path + ": " + why);
+          if (!quiet) std::fprintf(stderr, "mrsv decode: %s: level %d\n", path.c_str(), level);
+        }
+        return {};
+      });
+      *decoded = std::move(decoder.mesh());
+      return e;
+    };
+    return runMeshDecode(args, input.name(), out, decode, options);
   }
-  if (isProgressiveMeshStream(bytes.data(), bytes.size())) return runMeshDecode(args, in, out, bytes, options);
-  if (isProgressiveTetStream(bytes.data(), bytes.size())) return runTetDecode(args, in, out, bytes, options);
+  if (isProgressiveTetStream(head.data(), head.size())) {
+    const TetDecodeFn decode = [&](const DecodeOptions& o, DecodedTetMesh* decoded) {
+      StreamDecoder decoder(o, StreamContent::kTetMesh);
+      Error e = decodeInput(&input, head, &decoder, [&]() -> Error {
+        for (const StreamUnit& unit : decoder.takeUnits()) {
+          if (levels_out.empty() || (unit.chunk_type != kChunkTetBase && unit.chunk_type != kChunkTetSplits)) continue;
+          const int level = unit.chunk_type == kChunkTetBase ? 0 : static_cast<int>(unit.index) + 1;
+          const std::string path = levelPath(levels_out, level);
+          TetWriteReport report;
+          std::string why;
+          if (!writeTetFile(path, decoder.tetMesh().mesh.mesh(), TetWriteOptions{}, &report, &why))
+            return ioError(path + ": " + why);
+          if (!quiet) std::fprintf(stderr, "mrsv decode: %s: level %d\n", path.c_str(), level);
+        }
+        return {};
+      });
+      *decoded = std::move(decoder.tetMesh());
+      return e;
+    };
+    return runTetDecode(args, input.name(), out, decode, options);
+  }
   if (args.has("faces") || args.has("tets") || args.has("vertices") || args.has("fraction"))
-    return fail(cmd, in + ": --faces, --tets, --vertices and --fraction are for mesh streams; this is a grid",
+    return fail(cmd, input.name() + ": --faces, --tets, --vertices and --fraction are for mesh streams; this is a grid",
                 kExitUsage);
   if (levels > 0 && args.flag("canonical"))
     return fail(cmd, "--canonical is defined at full resolution only", kExitUsage);
-  if (by_region) {
-    MemoryByteSource source(bytes.data(), bytes.size());
-    return runRegionDecode(args, in, out, region, threads, endian, levels, &source);
-  }
   progress.update(0.2);
-  DecodedGrid grid;
-  if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok())
-    return reportError(cmd, in, e);
+
+  // A grid: each band decoded as it arrives; with --levels-out each level's
+  // samples synthesised from the level above when its last band is in.
+  DecodeOptions grid_options = options;
+  if (!levels_out.empty()) grid_options.whole_array_synthesis = true;  // the same samples (grid.h)
+  StreamDecoder decoder(grid_options, StreamContent::kGrid);
+  int next_level = INT_MAX;  // the levels from here up are written
+  auto writeLevel = [&](int level, const uint32_t size[3], std::vector<uint8_t> samples) -> Error {
+    const DecodedGrid& g = decoder.grid();
+    const std::string path = levelPath(levels_out, level);
+    const Metadata metadata = reducedResolutionMetadata(g.metadata, g.header, g.wavelet.levels, level);
+    std::vector<uint8_t> bytes;
+    std::string why;
+    if (!encodeGridOutput(path, g.header, metadata, size, std::move(samples), endian == Endian::kBig, &bytes, &why))
+      return ioError(why);
+    if (!writeFileAtomically(path, bytes, &why)) return ioError(path + ": " + why);
+    if (!quiet) std::fprintf(stderr, "mrsv decode: %s: level %d, %ux%ux%u\n", path.c_str(), level, size[0], size[1], size[2]);
+    return {};
+  };
+  Error e = decodeInput(&input, head, &decoder, [&]() -> Error {
+    for (const StreamUnit& unit : decoder.takeUnits()) {
+      if (levels_out.empty() || unit.complete_level < 0) continue;
+      const DecodedGrid& g = decoder.grid();
+      const int coarsest = std::max({int{g.wavelet.levels[0]}, int{g.wavelet.levels[1]}, int{g.wavelet.levels[2]}});
+      const int finest = std::max({unit.complete_level, static_cast<int>(levels), 1});
+      for (int r = std::min(next_level - 1, coarsest); r >= finest; --r) {
+        uint32_t size[3];
+        std::vector<uint8_t> samples;
+        if (Error le = decoder.gridLevelSamples(r, size, &samples); !le.ok()) return le;
+        next_level = r;
+        if (Error we = writeLevel(r, size, std::move(samples)); !we.ok()) return we;
+      }
+    }
+    return {};
+  });
+  if (!e.ok()) return reportError(cmd, input.name(), e);
+  DecodedGrid& grid = decoder.grid();
   progress.update(0.8);
+  if (!levels_out.empty() && grid.has_samples && static_cast<int>(levels) < next_level)
+    if (Error we = writeLevel(static_cast<int>(levels), grid.output_size, grid.samples); !we.ok())
+      return reportError(cmd, input.name(), we);
 
   std::vector<uint8_t> output;
   if (args.flag("canonical")) {
     output = canonicalGridOutput(grid);
   } else {
     if (!grid.has_samples)
-      return fail(cmd, in + ": the stream ends before its sample data (a prefix of " +
+      return fail(cmd, input.name() + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
     // A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6).
@@ -173,14 +315,14 @@ int runDecode(int argc, char** argv) {
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);
   }
-  if (!args.flag("quiet") && !args.flag("canonical") &&
+  if (!quiet && !args.flag("canonical") &&
       (grid.output_size[0] != grid.header.size_x || grid.output_size[1] != grid.header.size_y ||
        grid.output_size[2] != grid.header.size_z))
     std::fprintf(stderr, "mrsv decode: %s: reduced resolution %ux%ux%u\n", out.c_str(),
                  grid.output_size[0], grid.output_size[1], grid.output_size[2]);
-  if (!grid.container.complete && !args.flag("quiet"))
+  if (!grid.container.complete && !quiet)
     std::fprintf(stderr, "mrsv decode: %s: note: stream is a prefix (no MEND); decoded its %zu complete chunks\n",
-                 in.c_str(), grid.container.chunks.size());
+                 input.name().c_str(), grid.container.chunks.size());
   if (!writeFileAtomically(out, output, &error)) return fail(cmd, out + ": " + error, kExitIo);
   progress.update(1.0);
   return kExitOk;

@@ -196,7 +196,7 @@ int runMeshEncode(int argc, char** argv) {
 
 // mrsv decode for a PM stream: the level comes from --faces, --vertices or --fraction.
 int runMeshDecode(const Args& args, const std::string& in, const std::string& out,
-                  const std::vector<uint8_t>& bytes, const DecodeOptions& options) {
+                  const MeshDecodeFn& decode, const DecodeOptions& options) {
   const char* cmd = "decode";
   std::string error;
   if (args.has("levels") || args.has("endian") || args.has("tets"))
@@ -213,7 +213,7 @@ int runMeshDecode(const Args& args, const std::string& in, const std::string& ou
   const DecodeOptions limited = levelLimits(args, "faces", number, options);
   DecodedMesh decoded;
   auto start = std::chrono::steady_clock::now();
-  if (Error e = decodeProgressiveMesh(bytes.data(), bytes.size(), limited, &decoded); !e.ok())
+  if (Error e = decode(limited, &decoded); !e.ok())
     return reportError(cmd, in, e);
   auto done = std::chrono::steady_clock::now();
   if (!decoded.has_mesh) {

@@ -193,7 +193,7 @@ int runTetEncode(int argc, char** argv) {
 }
 
 // mrsv decode for a PT stream: the level comes from --tets, --vertices or --fraction.
-int runTetDecode(const Args& args, const std::string& in, const std::string& out, const std::vector<uint8_t>& bytes,
+int runTetDecode(const Args& args, const std::string& in, const std::string& out, const TetDecodeFn& decode,
                  const DecodeOptions& options) {
   const char* cmd = "decode";
   std::string error;
@@ -209,7 +209,7 @@ int runTetDecode(const Args& args, const std::string& in, const std::string& out
   const DecodeOptions limited = levelLimits(args, "tets", number, options);
   DecodedTetMesh decoded;
   auto start = std::chrono::steady_clock::now();
-  if (Error e = decodeProgressiveTetMesh(bytes.data(), bytes.size(), limited, &decoded); !e.ok())
+  if (Error e = decode(limited, &decoded); !e.ok())
     return reportError(cmd, in, e);
   auto done = std::chrono::steady_clock::now();
   ProgressiveTetMesh& pt = decoded.mesh;

@@ -2,10 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "mrsv/grid.h"
+#include "mrsv/progressive_mesh.h"
+#include "mrsv/progressive_tet_mesh.h"
 #include "mrsv/raw_grid.h"
 #include "mrsv/tiled_grid.h"
 
@@ -24,15 +27,19 @@ int runMesh(int argc, char** argv);  // cmd_reconstruct.cpp: the reconstructors 
 bool isMeshEncode(int argc, char** argv);
 int runMeshEncode(int argc, char** argv);
 class Args;
+// `decode` decodes the stream with the options the level needs (mrsv decode
+// feeds it the input as it arrives).
+using MeshDecodeFn = std::function<Error(const DecodeOptions&, DecodedMesh*)>;
 int runMeshDecode(const Args& args, const std::string& in, const std::string& out,
-                  const std::vector<uint8_t>& bytes, const DecodeOptions& options);
+                  const MeshDecodeFn& decode, const DecodeOptions& options);
 
 // Tet meshes (cmd_tets.cpp): encode dispatches when an argument names a tet
 // mesh file; decode, info and check dispatch on the stream's first chunk.
 bool isTetEncode(int argc, char** argv);
 int runTetEncode(int argc, char** argv);
+using TetDecodeFn = std::function<Error(const DecodeOptions&, DecodedTetMesh*)>;
 int runTetDecode(const Args& args, const std::string& in, const std::string& out,
-                 const std::vector<uint8_t>& bytes, const DecodeOptions& options);
+                 const TetDecodeFn& decode, const DecodeOptions& options);
 
 // mrsv decode --region (cmd_decode_region.cpp): a box of a grid, read through
 // the tile index when the stream is tiled. `source` null: IN is read by offset.

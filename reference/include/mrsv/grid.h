@@ -148,7 +148,8 @@ struct DecodedGrid {
   std::vector<uint8_t> samples;    // sample bytes, little-endian, x fastest, then y, then z
 };
 
-// One-shot decode. Never throws; on failure returns the first broken rule
+// One-shot decode: the streaming decoder (stream_decoder.h) fed all the bytes
+// at once. Never throws; on failure returns the first broken rule (Annex A.2)
 // and leaves `out` holding what was read before it.
 Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedGrid* out);
 

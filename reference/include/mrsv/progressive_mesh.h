@@ -94,7 +94,8 @@ struct DecodedMesh {
 // True when the file's first chunk is PHDR (a PM stream rather than a grid).
 bool isProgressiveMeshStream(const uint8_t* data, size_t size);
 
-// One-shot decode of a PM stream or a prefix of one. Never throws; on failure
+// One-shot decode of a PM stream or a prefix of one (the streaming decoder of
+// stream_decoder.h fed all the bytes at once). Never throws; on failure
 // returns the first broken rule.
 Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
                             DecodedMesh* out);

@@ -97,7 +97,8 @@ struct DecodedTetMesh {
 // True when the file's first chunk is THDR.
 bool isProgressiveTetStream(const uint8_t* data, size_t size);
 
-// One-shot decode of a PT stream or a prefix of one. Never throws; on failure
+// One-shot decode of a PT stream or a prefix of one (the streaming decoder of
+// stream_decoder.h fed all the bytes at once). Never throws; on failure
 // returns the first broken rule.
 Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
                                DecodedTetMesh* out);

@@ -4,6 +4,7 @@
 
 #include "common/byte_reader.h"
 #include "common/crc32c.h"
+#include "bitstream/container_framer.h"
 #include "mrsv/container.h"
 
 namespace mrsv {
@@ -85,13 +86,8 @@ bool isKnownCriticalChunk(const ChunkType& type) {
          type == kChunkTiling || type == kChunkTileIndex;
 }
 
-Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,
-                    Container* out) {
-  // API misuse, not bad input: asserted in debug builds (spec Annex A.3).
-  assert(out != nullptr && (data != nullptr || size == 0));
-  *out = Container{};
+Error ContainerFramer::fileHeader(const uint8_t* data, size_t size, Container* out) {
   if (Error e = checkSignature(data, size); !e.ok()) return e;
-
   ByteReader header(data + sizeof kSignature, kFileHeaderSize - sizeof kSignature);
   out->version_major = header.u8();
   out->version_minor = header.u8();
@@ -105,84 +101,107 @@ Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& op
   if (header_flags != 0)
     return fail(Status::kReservedNonZero, 11, "file_header.header_flags",
                 "reserved header_flags must be 0");
+  return {};
+}
 
+Error ContainerFramer::chunkHeader(const uint8_t* header, uint64_t pos, ChunkView* chunk) {
+  *chunk = ChunkView{};
+  chunk->offset = pos;
+  std::memcpy(chunk->chunk_type.c, header, 4);
+  ByteReader length_reader(header + 4, 4);
+  chunk->chunk_length = length_reader.u32();
+  if (!isChunkTypeSyntax(chunk->chunk_type))
+    return fail(Status::kBadChunkType, pos, "chunk_type",
+                "'" + printable(chunk->chunk_type) + "' is not four ASCII letters");
+  if (chunk->chunk_length > kMaxChunkPayload)
+    return fail(Status::kOversizedChunk, pos + 4, chunk->chunk_type.str() + ".chunk_length",
+                std::to_string(chunk->chunk_length) + " exceeds the limit of " +
+                    std::to_string(kMaxChunkPayload) + " bytes");
+  return {};
+}
+
+Error ContainerFramer::endsInsideChunk(uint64_t pos, uint64_t remaining, const ChunkView& chunk,
+                                       Container* out) const {
+  if (options_.allow_partial_tail) {
+    out->ignored_tail_bytes = remaining;
+    return {};
+  }
+  if (remaining < kChunkHeaderSize)
+    return fail(Status::kTruncatedChunkHeader, pos, "chunk",
+                "file ends " + std::to_string(remaining) + " bytes into an 8-byte chunk header");
+  const uint64_t needed = uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize;
+  return fail(Status::kChunkPastEnd, pos + 4, chunk.chunk_type.str() + ".chunk_length",
+              "chunk needs " + std::to_string(needed) + " bytes but only " +
+                  std::to_string(remaining) + " remain (file truncated or length damaged)");
+}
+
+Error ContainerFramer::trailingBytes(const Container& c, uint64_t extra) {
+  return fail(Status::kTrailingBytes, c.end_chunk_offset + kChunkHeaderSize + kChunkCrcSize, "MEND",
+              std::to_string(extra) + " bytes follow the MEND chunk");
+}
+
+Error ContainerFramer::wholeChunk(const uint8_t* bytes, ChunkView* chunk, Container* out) {
+  const uint64_t pos = chunk->offset;
+  chunk->payload = bytes + kChunkHeaderSize;
+  ByteReader crc_reader(chunk->payload + chunk->chunk_length, 4);
+  chunk->chunk_crc = crc_reader.u32();
+  if (options_.verify_checksums) {
+    uint32_t computed = crc32c(0, bytes, kChunkHeaderSize + chunk->chunk_length);
+    if (computed != chunk->chunk_crc)
+      return fail(Status::kChecksumMismatch, chunk->payloadOffset() + chunk->chunk_length,
+                  chunk->chunk_type.str() + ".chunk_crc", "CRC-32C of the chunk does not match");
+  }
+  if (++count_ > kMaxChunks)
+    return fail(Status::kTooManyChunks, pos, "chunk",
+                "more than " + std::to_string(kMaxChunks) + " chunks");
+
+  if (chunk->chunk_type == kChunkEnd) {
+    if (chunk->chunk_length != 0)
+      return fail(Status::kBadChunkLength, pos + 4, "MEND.chunk_length",
+                  "MEND must have an empty payload");
+    if (out->chunks.empty())
+      return fail(Status::kChunkOrder, pos, "MEND", "a content header must precede MEND");
+    out->complete = true;
+    out->end_chunk_offset = pos;
+    return {};
+  }
+  if (chunk->chunk_type.critical() && !isKnownCriticalChunk(chunk->chunk_type))
+    return fail(Status::kUnknownCriticalChunk, pos, "chunk_type",
+                "critical chunk '" + chunk->chunk_type.str() + "' is not known to this decoder");
+  bool header_chunk = isContentHeader(chunk->chunk_type);
+  if (out->chunks.empty() && !header_chunk)
+    return fail(Status::kChunkOrder, pos, chunk->chunk_type.str(),
+                "the first chunk must be a content header (GHDR, PHDR or THDR)");
+  if (!out->chunks.empty() && header_chunk)
+    return fail(Status::kChunkOrder, pos, chunk->chunk_type.str(), "a second content header");
+  if (chunk->chunk_type == kChunkMeta) {
+    if (seen_meta_) return fail(Status::kChunkOrder, pos, "meta", "more than one meta chunk");
+    seen_meta_ = true;
+  }
+  out->chunks.push_back(*chunk);
+  return {};
+}
+
+Error readContainer(const uint8_t* data, size_t size, const ContainerOptions& options,
+                    Container* out) {
+  // API misuse, not bad input: asserted in debug builds (spec Annex A.3).
+  assert(out != nullptr && (data != nullptr || size == 0));
+  *out = Container{};
+  ContainerFramer framer(options);
+  if (Error e = framer.fileHeader(data, size < kFileHeaderSize ? size : kFileHeaderSize, out); !e.ok())
+    return e;
   uint64_t pos = kFileHeaderSize;
-  bool seen_meta = false;
-  uint32_t count = 0;
   while (pos < size) {
-    size_t remaining = size - pos;
-    if (remaining < kChunkHeaderSize) {
-      if (options.allow_partial_tail) {
-        out->ignored_tail_bytes = remaining;
-        return {};
-      }
-      return fail(Status::kTruncatedChunkHeader, pos, "chunk",
-                  "file ends " + std::to_string(remaining) + " bytes into an 8-byte chunk header");
-    }
+    const uint64_t remaining = size - pos;
     ChunkView chunk;
-    chunk.offset = pos;
-    std::memcpy(chunk.chunk_type.c, data + pos, 4);
-    ByteReader length_reader(data + pos + 4, 4);
-    chunk.chunk_length = length_reader.u32();
-    if (!isChunkTypeSyntax(chunk.chunk_type))
-      return fail(Status::kBadChunkType, pos, "chunk_type",
-                  "'" + printable(chunk.chunk_type) + "' is not four ASCII letters");
-    if (chunk.chunk_length > kMaxChunkPayload)
-      return fail(Status::kOversizedChunk, pos + 4, chunk.chunk_type.str() + ".chunk_length",
-                  std::to_string(chunk.chunk_length) + " exceeds the limit of " +
-                      std::to_string(kMaxChunkPayload) + " bytes");
-    uint64_t needed = uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize;
-    if (needed > remaining) {
-      if (options.allow_partial_tail) {
-        out->ignored_tail_bytes = remaining;
-        return {};
-      }
-      return fail(Status::kChunkPastEnd, pos + 4, chunk.chunk_type.str() + ".chunk_length",
-                  "chunk needs " + std::to_string(needed) + " bytes but only " +
-                      std::to_string(remaining) + " remain (file truncated or length damaged)");
-    }
-    chunk.payload = data + pos + kChunkHeaderSize;
-    ByteReader crc_reader(chunk.payload + chunk.chunk_length, 4);
-    chunk.chunk_crc = crc_reader.u32();
-    if (options.verify_checksums) {
-      uint32_t computed = crc32c(0, data + pos, kChunkHeaderSize + chunk.chunk_length);
-      if (computed != chunk.chunk_crc)
-        return fail(Status::kChecksumMismatch, chunk.payloadOffset() + chunk.chunk_length,
-                    chunk.chunk_type.str() + ".chunk_crc", "CRC-32C of the chunk does not match");
-    }
-    if (++count > kMaxChunks)
-      return fail(Status::kTooManyChunks, pos, "chunk",
-                  "more than " + std::to_string(kMaxChunks) + " chunks");
-
-    if (chunk.chunk_type == kChunkEnd) {
-      if (chunk.chunk_length != 0)
-        return fail(Status::kBadChunkLength, pos + 4, "MEND.chunk_length",
-                    "MEND must have an empty payload");
-      if (out->chunks.empty())
-        return fail(Status::kChunkOrder, pos, "MEND", "a content header must precede MEND");
-      out->complete = true;
-      out->end_chunk_offset = pos;
-      uint64_t end = chunk.endOffset();
-      if (end != size)
-        return fail(Status::kTrailingBytes, end, "MEND",
-                    std::to_string(size - end) + " bytes follow the MEND chunk");
-      return {};
-    }
-    if (chunk.chunk_type.critical() && !isKnownCriticalChunk(chunk.chunk_type))
-      return fail(Status::kUnknownCriticalChunk, pos, "chunk_type",
-                  "critical chunk '" + chunk.chunk_type.str() + "' is not known to this decoder");
-    bool header_chunk = isContentHeader(chunk.chunk_type);
-    if (out->chunks.empty() && !header_chunk)
-      return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(),
-                  "the first chunk must be a content header (GHDR, PHDR or THDR)");
-    if (!out->chunks.empty() && header_chunk)
-      return fail(Status::kChunkOrder, pos, chunk.chunk_type.str(), "a second content header");
-    if (chunk.chunk_type == kChunkMeta) {
-      if (seen_meta) return fail(Status::kChunkOrder, pos, "meta", "more than one meta chunk");
-      seen_meta = true;
-    }
-    out->chunks.push_back(chunk);
+    if (remaining < kChunkHeaderSize) return framer.endsInsideChunk(pos, remaining, chunk, out);
+    if (Error e = framer.chunkHeader(data + pos, pos, &chunk); !e.ok()) return e;
+    if (uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize > remaining)
+      return framer.endsInsideChunk(pos, remaining, chunk, out);
+    if (Error e = framer.wholeChunk(data + pos, &chunk, out); !e.ok()) return e;
     pos = chunk.endOffset();
+    if (out->complete)
+      return pos == size ? Error{} : ContainerFramer::trailingBytes(*out, size - pos);
   }
   return {};  // a clean prefix: every chunk complete, MEND not yet seen
 }

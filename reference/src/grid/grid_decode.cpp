@@ -3,79 +3,86 @@
 #include <string>
 
 #include "mrsv/grid.h"
-#include "grid/wavelet_decode.h"
+#include "grid/grid_steps.h"
 #include "tiles/tile_decode.h"
 
 namespace mrsv {
 
-Error decodeGrid(const uint8_t* data, size_t size, const DecodeOptions& options,
-                 DecodedGrid* out) {
-  return decodeGridKeepingCoefficients(data, size, options, out, nullptr);
+Error GridSteps::header(const ChunkView& chunk) {
+  if (Error e = parseGridHeader(chunk, &out_->header); !e.ok()) return e;
+  if (out_->header.coding == GridCoding::kWavelet)
+    wavelet_ = std::make_unique<WaveletGridSteps>(options_, out_, keep_);
+  tiled_ = out_->header.coding == GridCoding::kTiled;
+  keepPayload(chunk);
+  return {};
 }
 
-Error decodeGridKeepingCoefficients(const uint8_t* data, size_t size, const DecodeOptions& options,
-                                    DecodedGrid* out, WaveletCoefficients* coefficients) {
-  *out = DecodedGrid{};
-  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
-  const Container& c = out->container;
-  if (c.chunks.empty()) return {};  // a prefix that ends before the content header
+void GridSteps::keepPayload(const ChunkView& chunk) {
+  if (!tiled_) return;
+  if (bytes_outlive_steps_) {
+    payloads_.push_back(chunk.payload);
+  } else {
+    copies_.emplace_back(chunk.payload, chunk.payload + chunk.chunk_length);
+    payloads_.push_back(copies_.back().data());
+  }
+}
 
-  // readContainer guarantees the first chunk is a content header; a grid
-  // decoder reads the grid profile only (spec 1.6).
-  if (c.chunks[0].chunk_type != kChunkGridHeader)
-    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
-                 "not a grid stream (the content header is not GHDR; spec 1.6)"};
-  if (Error e = parseGridHeader(c.chunks[0], &out->header); !e.ok()) return e;
-  const GridHeader& h = out->header;
-  const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);
-
+Error GridSteps::chunk(const ChunkView& chunk) {
+  keepPayload(chunk);
   // Metadata, whatever the coding (spec 2.6).
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    if (chunk.chunk_type == kChunkMeta) {
-      if (Error e = parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
-                                  &out->metadata);
-          !e.ok())
-        return e;
+  if (chunk.chunk_type == kChunkMeta)
+    return parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out_->metadata);
+  if (wavelet_) return wavelet_->chunk(chunk);
+  if (tiled_) return {};  // decoded at the end (below)
+  const GridHeader& h = out_->header;
+  const uint64_t expected_bytes = h.sampleCount() * sampleSize(h.sample_type);
+  if (chunk.chunk_type == kChunkGridStored) {
+    // spec: 3.3 GRAW: exactly the grid's samples, once.
+    if (seen_stored_)
+      return Error{Status::kChunkOrder, chunk.offset, "GRAW", "more than one GRAW chunk"};
+    seen_stored_ = true;
+    if (chunk.chunk_length != expected_bytes)
+      return Error{Status::kSampleDataMismatch, chunk.offset + 4, "GRAW.chunk_length",
+                   "GRAW holds " + std::to_string(chunk.chunk_length) +
+                       " bytes but the grid needs " + std::to_string(expected_bytes)};
+    if (expected_bytes > options_.max_output_bytes)
+      return Error{Status::kResourceLimit, chunk.offset, "GRAW",
+                   "grid of " + std::to_string(expected_bytes) +
+                       " bytes exceeds the decoder's output limit"};
+    // The API never throws (Annex A.3): a failed allocation is a resource limit.
+    try {
+      out_->samples.assign(chunk.payload, chunk.payload + chunk.chunk_length);
+    } catch (const std::bad_alloc&) {
+      return Error{Status::kResourceLimit, chunk.offset, "GRAW",
+                   "cannot allocate " + std::to_string(expected_bytes) + " bytes"};
     }
+    out_->has_samples = true;
+    out_->output_size[0] = h.size_x;
+    out_->output_size[1] = h.size_y;
+    out_->output_size[2] = h.size_z;
+  } else if (chunk.chunk_type.critical()) {
+    return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                 chunk.chunk_type.str() + " in a stored grid"};
   }
-  if (h.coding == GridCoding::kWavelet) return decodeWaveletGrid(options, out, coefficients);
-  if (h.coding == GridCoding::kTiled) return decodeTiledGrid(options, out);
+  // Unknown ancillary chunks are skipped (spec 2.4).
+  return {};
+}
 
-  bool seen_stored = false;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    if (chunk.chunk_type == kChunkGridStored) {
-      // spec: 3.3 GRAW: exactly the grid's samples, once.
-      if (seen_stored)
-        return Error{Status::kChunkOrder, chunk.offset, "GRAW", "more than one GRAW chunk"};
-      seen_stored = true;
-      if (chunk.chunk_length != expected_bytes)
-        return Error{Status::kSampleDataMismatch, chunk.offset + 4, "GRAW.chunk_length",
-                     "GRAW holds " + std::to_string(chunk.chunk_length) +
-                         " bytes but the grid needs " + std::to_string(expected_bytes)};
-      if (expected_bytes > options.max_output_bytes)
-        return Error{Status::kResourceLimit, chunk.offset, "GRAW",
-                     "grid of " + std::to_string(expected_bytes) +
-                         " bytes exceeds the decoder's output limit"};
-      // The API never throws (Annex A.3): a failed allocation is a resource limit.
-      try {
-        out->samples.assign(chunk.payload, chunk.payload + chunk.chunk_length);
-      } catch (const std::bad_alloc&) {
-        return Error{Status::kResourceLimit, chunk.offset, "GRAW",
-                     "cannot allocate " + std::to_string(expected_bytes) + " bytes"};
-      }
-      out->has_samples = true;
-      out->output_size[0] = h.size_x;
-      out->output_size[1] = h.size_y;
-      out->output_size[2] = h.size_z;
-    } else if (chunk.chunk_type.critical()) {
-      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
-                   chunk.chunk_type.str() + " in a stored grid"};
+Error GridSteps::end(const Container& c) {
+  if (wavelet_) return wavelet_->end(c);
+  if (tiled_) {
+    // The tile decode (spec 11) reads the chunks of the container, with
+    // their bytes, as kept above.
+    std::vector<const uint8_t*> before;
+    for (size_t i = 0; i < out_->container.chunks.size() && i < payloads_.size(); ++i) {
+      before.push_back(out_->container.chunks[i].payload);
+      out_->container.chunks[i].payload = payloads_[i];
     }
-    // Unknown ancillary chunks are skipped (spec 2.4).
+    Error e = decodeTiledGrid(options_, out_);
+    for (size_t i = 0; i < before.size(); ++i) out_->container.chunks[i].payload = before[i];
+    return e;
   }
-  if (c.complete && !seen_stored)
+  if (c.complete && !seen_stored_)
     return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND",
                  "a stored grid needs one GRAW chunk before MEND"};
   return {};

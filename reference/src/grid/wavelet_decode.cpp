@@ -4,6 +4,7 @@
 #include "grid/wavelet_decode.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -93,6 +94,8 @@ ArrayDestination contiguous(int64_t* values, const ArrayBox& box) {
   return {values, box.size[0], size_t{box.size[0]} * box.size[1]};
 }
 
+}  // namespace
+
 struct WaveletState {
   const GridHeader* grid = nullptr;
   WaveletHeader header;
@@ -119,8 +122,13 @@ struct WaveletState {
   bool void_values = false;           // DecodeOptions::void_values: the mask is not applied to samples
   std::vector<int64_t> residual;      // empty without a residual
   uint32_t residual_step = 0;
-  WaveletCoefficients* keep = nullptr;  // see decodeWaveletGrid()
+  WaveletCoefficients* keep = nullptr;  // see WaveletGridSteps (wavelet_decode.h)
+  // The levels above this one are synthesised in place already (their bands
+  // consumed): WaveletGridSteps::levelSamples() goes down one level at a time.
+  int synthesized = INT_MAX;
 };
+
+namespace {
 
 ArrayBox gridBox(const GridHeader& g) {
   ArrayBox box;
@@ -440,17 +448,38 @@ bool synthesizeIntegerSamples(WaveletState* s, uint8_t* samples) {
       return wavelet::synthesizeLastLevelCdf97(s->plan, s->last_level->rows(s->coefficients.get()),
                                                rows);
     }
-    if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows)) return true;
+    if (wavelet::synthesizeFixedCdf97(s->plan, s->coefficients.get(), 0, rows, s->synthesized))
+      return true;
   } else {
-    wavelet::synthesizeFixed(s->plan, s->coefficients.get(), 0);
+    wavelet::synthesizeFixed(s->plan, s->coefficients.get(), 0, s->synthesized);
   }
   mapping.all(*s);
   return true;
 }
 
-// Output box of a synthesis stopped `stop` levels above the finest (at most
-// the plan's levels): per axis the low-pass block of level axis_stop, cut to
-// what covers the grid (spec 5.8.3).
+// Zeroes the bands with step 0 and those not (yet) in the stream among the
+// levels above `below` not synthesised yet (those of a last level kept apart
+// are zero when not stored).
+void zeroUnwrittenBands(WaveletState* s, int below) {
+  const uint64_t px = s->array_plan.axis[0].size(0), pxy = px * s->array_plan.axis[1].size(0);
+  for (size_t b = 0; b < s->bands.size(); ++b) {
+    const wavelet::Band& band = s->bands[b];
+    // (The coarsest scaling block, mask 0, belongs to every level.)
+    if (s->band_written[b] || band.level > s->synthesized || (band.mask != 0 && band.level <= below) ||
+        (s->last_level && band.level == 1 && band.mask != 0))
+      continue;
+    for (uint32_t z = 0; z < band.size[2]; ++z)
+      for (uint32_t y = 0; y < band.size[1]; ++y) {
+        int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
+                                                (band.offset[2] + z) * pxy);
+        std::fill(row, row + band.size[0], 0);
+      }
+    s->band_written[b] = 1;  // zero now, and not to be zeroed again
+  }
+}
+
+// The output box at reduced resolution `stop`: the low-pass block of level
+// `stop`, cut to what covers the grid (spec 5.8.3).
 void outputBox(const wavelet::GridPlan& plan, int stop, uint32_t size[3], int axis_stop[3]) {
   for (int a = 0; a < 3; ++a) {
     const wavelet::AxisPlan& ax = plan.axis[a];
@@ -467,6 +496,47 @@ void outputBox(const wavelet::GridPlan& plan, int stop, uint32_t size[3], int ax
   }
 }
 
+// Floating-point samples, and reduced resolution: one sample at a time from
+// the low-pass block of level `stop` at the front of the padded array.
+void mapSamplesOneByOne(const WaveletState& s, int stop, const uint32_t size[3],
+                        const int axis_stop[3], uint8_t* samples) {
+  const GridHeader& g = *s.grid;
+  const bool full = stop == 0;
+  const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;
+  const size_t bytes_per_sample = sampleSize(g.sample_type);
+  const uint64_t px = s.array_plan.axis[0].size(0), pxy = px * s.array_plan.axis[1].size(0);
+  const int w = s.header.frac_bits;
+  const int64_t offset = static_cast<int64_t>(s.header.value_offset);
+  uint8_t nodata[8];
+  std::memcpy(nodata, &g.nodata_bits, 8);
+  size_t k = 0;
+  for (uint32_t z = 0; z < size[2]; ++z)
+    for (uint32_t y = 0; y < size[1]; ++y)
+      for (uint32_t x = 0; x < size[0]; ++x, ++k) {
+        uint8_t* dst = samples + k * bytes_per_sample;
+        // The full-resolution sample this output stands for (itself when full).
+        uint64_t fx = uint64_t{x} << axis_stop[0], fy = uint64_t{y} << axis_stop[1],
+                 fz = uint64_t{z} << axis_stop[2];
+        if (fx >= g.size_x) fx = g.size_x - 1;
+        if (fy >= g.size_y) fy = g.size_y - 1;
+        if (fz >= g.size_z) fz = g.size_z - 1;
+        uint64_t fi = fx + fy * g.size_x + fz * uint64_t{g.size_x} * g.size_y;
+        if (!s.mask.empty() && !s.void_values && s.mask[fi]) {
+          std::memcpy(dst, nodata, bytes_per_sample);
+          continue;
+        }
+        int64_t v = roundShift(s.coefficients[x + y * px + z * pxy], w);
+        if (integer) {
+          // Clamped before and after the residual, so that an encoder can compute
+          // the residual from the decoded samples alone.
+          v = clampToType(v + offset, g.sample_type);
+          if (full && !s.residual.empty())
+            v = clampToType(v + s.residual[fi] * int64_t{s.residual_step}, g.sample_type);
+        }
+        writeSample(g, s.header, v, dst);
+      }
+}
+
 // spec: 5.8 synthesis and output mapping.
 Error produceSamples(const DecodeOptions& options, const ChunkView& last, WaveletState* s,
                      DecodedGrid* out) {
@@ -476,19 +546,7 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
                                                                 : s->plan.maxLevels();
   // (None yet when every band so far had step 0.)
   if (Error e = allocateCoefficients(options, last, s); !e.ok()) return e;
-  // The bands with step 0 and those not (yet) in the stream are zero (those
-  // of a last level kept apart are when not stored).
-  const uint64_t px = s->array_plan.axis[0].size(0), pxy = px * s->array_plan.axis[1].size(0);
-  for (size_t b = 0; b < s->bands.size(); ++b) {
-    const wavelet::Band& band = s->bands[b];
-    if (s->band_written[b] || (s->last_level && band.level == 1 && band.mask != 0)) continue;
-    for (uint32_t z = 0; z < band.size[2]; ++z)
-      for (uint32_t y = 0; y < band.size[1]; ++y) {
-        int64_t* row = s->coefficients.get() + (band.offset[0] + (band.offset[1] + y) * px +
-                                                (band.offset[2] + z) * pxy);
-        std::fill(row, row + band.size[0], 0);
-      }
-  }
+  zeroUnwrittenBands(s, 0);
   if (s->keep && !s->last_level) {
     s->keep->plan = s->plan;
     s->keep->values.assign(s->coefficients.get(), s->coefficients.get() + s->plan.paddedCount());
@@ -522,109 +580,134 @@ Error produceSamples(const DecodeOptions& options, const ChunkView& last, Wavele
   // Only grids without a last level apart get here (last_level is made only
   // for full-resolution integer samples, all returned above): `coefficients`
   // is the padded array of the whole plan.
-  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop);
-  // Floating-point samples, and reduced resolution: one sample at a time.
-  const int w = s->header.frac_bits;
-  const int64_t offset = static_cast<int64_t>(s->header.value_offset);
-  uint8_t nodata[8];
-  std::memcpy(nodata, &g.nodata_bits, 8);
-  size_t k = 0;
-  for (uint32_t z = 0; z < size[2]; ++z)
-    for (uint32_t y = 0; y < size[1]; ++y)
-      for (uint32_t x = 0; x < size[0]; ++x, ++k) {
-        uint8_t* dst = out->samples.data() + k * bytes_per_sample;
-        // The full-resolution sample this output stands for (itself when full).
-        uint64_t fx = uint64_t{x} << axis_stop[0], fy = uint64_t{y} << axis_stop[1],
-                 fz = uint64_t{z} << axis_stop[2];
-        if (fx >= g.size_x) fx = g.size_x - 1;
-        if (fy >= g.size_y) fy = g.size_y - 1;
-        if (fz >= g.size_z) fz = g.size_z - 1;
-        uint64_t fi = fx + fy * g.size_x + fz * uint64_t{g.size_x} * g.size_y;
-        if (!s->mask.empty() && !s->void_values && s->mask[fi]) {
-          std::memcpy(dst, nodata, bytes_per_sample);
-          continue;
-        }
-        int64_t v = roundShift(s->coefficients[x + y * px + z * pxy], w);
-        if (integer) {
-          // Clamped before and after the residual, so that an encoder can compute
-          // the residual from the decoded samples alone.
-          v = clampToType(v + offset, g.sample_type);
-          if (full && !s->residual.empty())
-            v = clampToType(v + s->residual[fi] * int64_t{s->residual_step}, g.sample_type);
-        }
-        writeSample(g, s->header, v, dst);
-      }
+  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), stop, s->synthesized);
+  s->synthesized = stop;
+  mapSamplesOneByOne(*s, stop, size, axis_stop, out->samples.data());
   return {};
 }
 
 }  // namespace
 
-Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
-                        WaveletCoefficients* coefficients) {
-  const Container& c = out->container;
-  WaveletState s;
-  s.grid = &out->header;
-  s.keep = coefficients;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    const ChunkType& t = chunk.chunk_type;
-    if (t == kChunkMeta || !t.critical()) continue;  // meta is read by decodeGrid
-    if (t == kChunkGridStored) return orderError(chunk, "GRAW in a wavelet-coded grid");
-    if (t == kChunkWaveletHeader) {
-      if (s.seen_header) return orderError(chunk, "a second WHDR");
-      if (Error e = parseWaveletHeader(chunk, out->header, &s.header); !e.ok()) return e;
-      s.seen_header = true;
-      out->wavelet = s.header;
-      const uint32_t samples[3] = {out->header.size_x, out->header.size_y, out->header.size_z};
-      const int levels[3] = {s.header.levels[0], s.header.levels[1], s.header.levels[2]};
-      wavelet::makeGridPlan(out->header.num_dims, samples, s.header.order, levels, &s.plan);
-      s.bands = wavelet::bandsOf(s.plan);
-      // The last level slice by slice: only for what synthesizeIntegerSamples() makes.
-      const SampleType type = out->header.sample_type;
-      if (options.reduce_levels == 0 && !options.whole_array_synthesis &&
-          type != SampleType::kFloat32 && type != SampleType::kFloat64)
-        s.last_level = LastLevelBands::make(s.plan);
-      s.array_plan = s.last_level ? s.last_level->upperPlan() : s.plan;
-      s.band_written.assign(s.bands.size(), 0);
-      out->bands_total = static_cast<uint32_t>(s.bands.size());
-      continue;
-    }
-    if (!s.seen_header) return orderError(chunk, "WHDR must come before " + t.str());
-    if (t == kChunkNodataMask) {
-      if (!s.header.hasMask()) return orderError(chunk, "GMSK without has_mask in WHDR");
-      if (s.seen_mask) return orderError(chunk, "a second GMSK");
-      if (out->bands_decoded > 0) return orderError(chunk, "GMSK after a GBND");
-      if (Error e = readMask(chunk, options, &s); !e.ok()) return e;
-      s.seen_mask = true;
-    } else if (t == kChunkBand) {
-      if (s.header.hasMask() && !s.seen_mask) return orderError(chunk, "GMSK must precede the bands");
-      if (out->bands_decoded == out->bands_total)
-        return orderError(chunk, "more GBND chunks than the plan has bands (" +
-                                     std::to_string(out->bands_total) + ")");
-      if (Error e = readBand(chunk, out->bands_decoded, options, &s); !e.ok()) return e;
-      ++out->bands_decoded;
-    } else if (t == kChunkResidual) {
-      if (!s.header.hasResidual()) return orderError(chunk, "GRES without has_residual in WHDR");
-      if (s.seen_residual) return orderError(chunk, "a second GRES");
-      if (out->bands_decoded != out->bands_total) return orderError(chunk, "GRES before the last band");
-      if (Error e = readResidual(chunk, options, &s); !e.ok()) return e;
-      s.seen_residual = true;
-      out->residual_decoded = true;
-    } else {
-      return orderError(chunk, t.str() + " in a wavelet-coded grid");
-    }
+WaveletGridSteps::WaveletGridSteps(const DecodeOptions& options, DecodedGrid* out,
+                                   WaveletCoefficients* keep)
+    : options_(options), out_(out), s_(new WaveletState) {
+  s_->grid = &out->header;
+  s_->keep = keep;
+}
+
+WaveletGridSteps::~WaveletGridSteps() = default;
+
+Error WaveletGridSteps::chunk(const ChunkView& chunk) {
+  WaveletState& s = *s_;
+  DecodedGrid* out = out_;
+  const DecodeOptions& options = options_;
+  const ChunkType& t = chunk.chunk_type;
+  if (t == kChunkMeta || !t.critical()) return {};  // meta is read by the grid steps
+  if (t == kChunkGridStored) return orderError(chunk, "GRAW in a wavelet-coded grid");
+  if (t == kChunkWaveletHeader) {
+    if (s.seen_header) return orderError(chunk, "a second WHDR");
+    if (Error e = parseWaveletHeader(chunk, out->header, &s.header); !e.ok()) return e;
+    s.seen_header = true;
+    out->wavelet = s.header;
+    const uint32_t samples[3] = {out->header.size_x, out->header.size_y, out->header.size_z};
+    const int levels[3] = {s.header.levels[0], s.header.levels[1], s.header.levels[2]};
+    wavelet::makeGridPlan(out->header.num_dims, samples, s.header.order, levels, &s.plan);
+    s.bands = wavelet::bandsOf(s.plan);
+    // The last level slice by slice: only for what synthesizeIntegerSamples() makes.
+    const SampleType type = out->header.sample_type;
+    if (options.reduce_levels == 0 && !options.whole_array_synthesis &&
+        type != SampleType::kFloat32 && type != SampleType::kFloat64)
+      s.last_level = LastLevelBands::make(s.plan);
+    s.array_plan = s.last_level ? s.last_level->upperPlan() : s.plan;
+    s.band_written.assign(s.bands.size(), 0);
+    out->bands_total = static_cast<uint32_t>(s.bands.size());
+    return {};
   }
+  if (!s.seen_header) return orderError(chunk, "WHDR must come before " + t.str());
+  if (t == kChunkNodataMask) {
+    if (!s.header.hasMask()) return orderError(chunk, "GMSK without has_mask in WHDR");
+    if (s.seen_mask) return orderError(chunk, "a second GMSK");
+    if (out->bands_decoded > 0) return orderError(chunk, "GMSK after a GBND");
+    if (Error e = readMask(chunk, options, &s); !e.ok()) return e;
+    s.seen_mask = true;
+  } else if (t == kChunkBand) {
+    if (s.header.hasMask() && !s.seen_mask) return orderError(chunk, "GMSK must precede the bands");
+    if (out->bands_decoded == out->bands_total)
+      return orderError(chunk, "more GBND chunks than the plan has bands (" +
+                                   std::to_string(out->bands_total) + ")");
+    if (Error e = readBand(chunk, out->bands_decoded, options, &s); !e.ok()) return e;
+    ++out->bands_decoded;
+  } else if (t == kChunkResidual) {
+    if (!s.header.hasResidual()) return orderError(chunk, "GRES without has_residual in WHDR");
+    if (s.seen_residual) return orderError(chunk, "a second GRES");
+    if (out->bands_decoded != out->bands_total) return orderError(chunk, "GRES before the last band");
+    if (Error e = readResidual(chunk, options, &s); !e.ok()) return e;
+    s.seen_residual = true;
+    out->residual_decoded = true;
+  } else {
+    return orderError(chunk, t.str() + " in a wavelet-coded grid");
+  }
+  return {};
+}
+
+Error WaveletGridSteps::end(const Container& c) {
+  const WaveletState& s = *s_;
   if (c.complete) {
     const ChunkView end{kChunkEnd, 0, 0, c.end_chunk_offset, nullptr};
     if (!s.seen_header) return orderError(end, "a wavelet-coded grid needs a WHDR chunk");
-    if (out->bands_decoded != out->bands_total)
-      return orderError(end, "the stream ends after " + std::to_string(out->bands_decoded) +
-                                 " of " + std::to_string(out->bands_total) + " bands");
+    if (out_->bands_decoded != out_->bands_total)
+      return orderError(end, "the stream ends after " + std::to_string(out_->bands_decoded) +
+                                 " of " + std::to_string(out_->bands_total) + " bands");
     if (s.header.hasResidual() && !s.seen_residual)
       return orderError(end, "has_residual is set but there is no GRES chunk");
   }
-  if (out->bands_decoded == 0) return {};  // a prefix before any band: shape only
-  return produceSamples(options, c.chunks.back(), &s, out);
+  if (out_->bands_decoded == 0) return {};  // a prefix before any band: shape only
+  return produceSamples(options_, c.chunks.back(), s_.get(), out_);
+}
+
+int WaveletGridSteps::completeLevel() const {
+  const WaveletState& s = *s_;
+  const uint32_t done = out_->bands_decoded;
+  if (!s.seen_header || done == 0) return -1;
+  if (done < out_->bands_total) return s.bands[done].level;
+  // Full resolution also needs the residual.
+  return s.header.hasResidual() && !s.seen_residual ? 1 : 0;
+}
+
+int WaveletGridSteps::maxLevels() const { return s_->seen_header ? s_->plan.maxLevels() : 0; }
+
+Error WaveletGridSteps::levelSamples(int level, const ChunkView& last, uint32_t size[3],
+                                     std::vector<uint8_t>* samples) {
+  WaveletState* s = s_.get();
+  if (s->last_level || level < 1 || level < options_.reduce_levels || level > s->synthesized ||
+      completeLevel() < 0 || completeLevel() > level)
+    return Error{Status::kInvalidArgument, last.offset, "levelSamples",
+                 "level " + std::to_string(level) + " is not available now"};
+  if (level > s->plan.maxLevels()) level = s->plan.maxLevels();
+  s->void_values = options_.void_values;
+  if (Error e = allocateCoefficients(options_, last, s); !e.ok()) return e;
+  zeroUnwrittenBands(s, level);
+  int axis_stop[3];
+  outputBox(s->plan, level, size, axis_stop);
+  const size_t bytes_per_sample = sampleSize(s->grid->sample_type);
+  const uint64_t count = uint64_t{size[0]} * size[1] * size[2];
+  if (Error e = checkMemory(s->plan.paddedCount() * 16 + count * bytes_per_sample, options_, last);
+      !e.ok())
+    return e;
+  wavelet::synthesizeFixed(s->plan, s->coefficients.get(), level, s->synthesized);
+  s->synthesized = level;
+  samples->assign(count * bytes_per_sample, 0);
+  mapSamplesOneByOne(*s, level, size, axis_stop, samples->data());
+  return {};
+}
+
+Error decodeWaveletGrid(const DecodeOptions& options, DecodedGrid* out,
+                        WaveletCoefficients* coefficients) {
+  WaveletGridSteps steps(options, out, coefficients);
+  const Container& c = out->container;
+  for (size_t i = 1; i < c.chunks.size(); ++i)
+    if (Error e = steps.chunk(c.chunks[i]); !e.ok()) return e;
+  return steps.end(c);
 }
 
 bool reducedResolution(const GridHeader& grid, const WaveletHeader& wavelet, int reduce_levels,

@@ -6,6 +6,7 @@
 #include "bitstream/coded_payload.h"
 #include "common/byte_reader.h"
 #include "pm/pm_records.h"
+#include "pm/pm_steps.h"
 
 namespace mrsv {
 
@@ -26,137 +27,139 @@ uint64_t memoryNeeded(const PmHeader& h) {
          splits * sizeof(SplitRecord);
 }
 
-// How many splits to make room for before decoding: what PHDR announces, but
-// no more than kSplitsPerCodedByte per byte of coded splits actually present,
-// so that a short hostile file cannot make the decoder allocate its whole
-// memory limit up front. A split of an interior vertex codes at least one
+// How many splits to make room for: what PHDR announces, but no more than
+// kSplitsPerCodedByte per byte of coded splits actually present so far, so
+// that a short hostile file cannot make the decoder allocate its whole memory
+// limit up front. A split of an interior vertex codes at least one
 // equiprobable bit (truncated(d), d >= 3), so real streams stay well below
-// this; a stream beyond it only makes the arrays grow as they go.
+// this; a stream beyond it only makes the arrays grow as they go. The room
+// grows at least twofold each time, so that a stream arriving batch by batch
+// moves its arrays a few times only.
 constexpr uint64_t kSplitsPerCodedByte = 8;
-uint64_t splitsToReserve(const Container& c, const PmHeader& h) {
-  uint64_t coded_bytes = 0;
-  for (const ChunkView& chunk : c.chunks)
-    if (chunk.chunk_type == kChunkSplits) coded_bytes += chunk.chunk_length;
-  return std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_bytes);
+
+}  // namespace
+
+PmSteps::PmSteps(const DecodeOptions& options, DecodedMesh* out)
+    : options_(options), out_(out), ctx_(new pm::PmContexts) {}
+
+PmSteps::~PmSteps() = default;
+
+Error PmSteps::header(const ChunkView& chunk) {
+  if (Error e = parsePmHeader(chunk, &out_->header); !e.ok()) return e;
+  out_->mesh.state().header = out_->header;
+  return {};
 }
 
-Error decodeChunks(const DecodeOptions& options, DecodedMesh* out) {
-  const Container& c = out->container;
-  ProgressiveMesh::Impl& s = out->mesh.state();
-  s.header = out->header;
-  const PmHeader& h = s.header;
-  pm::PmContexts ctx;
-  bool seen_base = false;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    const uint64_t at = chunk.payloadOffset();
-    if (chunk.chunk_type == kChunkBaseMesh) {
-      // spec 6.4 base_mesh()
-      if (seen_base) return Error{Status::kChunkOrder, chunk.offset, "PBAS", "more than one PBAS chunk"};
-      seen_base = true;
-      RangeDecoder rc(chunk.payload, chunk.chunk_length);
-      if (!rc.validStart())
-        return Error{Status::kBadEntropyPayload, at, "PBAS", "coded data must start with a 0 byte"};
-      DecodingCoder coder{&rc};
-      std::vector<std::array<uint32_t, 3>> triangles;
-      std::string problem = pm::codeBaseMesh(coder, ctx, s, &triangles);
-      if (!problem.empty()) {
-        Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
-        return Error{status, at, "PBAS", problem};
-      }
-      if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "PBAS"); !e.ok()) return e;
-      problem = s.table.build(h.base_vertex_count, triangles);
-      if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
-      s.reserveForSplits(splitsToReserve(c, h));
-      out->has_mesh = true;
-      if (stopsAt(options, out->mesh.triangleCount(), out->mesh.vertexCount())) {
-        out->stopped_early = true;
-        return {};
-      }
-    } else if (chunk.chunk_type == kChunkSplits) {
-      // spec 6.7 batch(): split_count u32, then the coded splits.
-      if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "PSPL", "PSPL before PBAS"};
-      ByteReader r(chunk.payload, chunk.chunk_length);
-      const uint32_t split_count = r.u32();
-      if (r.overrun())
-        return Error{Status::kBadChunkLength, chunk.offset + 4, "PSPL.chunk_length",
-                     "PSPL payload shorter than its 4-byte split_count"};
-      const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
-      if (out->batches_decoded == h.batch_count)
-        return Error{Status::kSplitCountMismatch, chunk.offset, "PSPL", "more PSPL chunks than batch_count"};
-      if (split_count == 0 || split_count > remaining)
-        return Error{Status::kSplitCountMismatch, at, "PSPL.split_count",
-                     "split_count " + std::to_string(split_count) + " must be 1 to the " +
-                         std::to_string(remaining) + " splits left"};
-      RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
-      if (!rc.validStart())
-        return Error{Status::kBadEntropyPayload, at + 4, "PSPL", "coded data must start with a 0 byte"};
-      DecodingCoder coder{&rc};
-      BatchCursor cursor = s.beginBatch();
-      for (uint32_t k = 0; k < split_count; ++k) {
-        SplitRecord record;
-        std::string problem = pm::codeSplit(coder, ctx, s, &cursor, &record);
-        if (!problem.empty()) {
-          Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
-          return Error{status, at + 4, "PSPL.vertex_split",
-                       "split " + std::to_string(k) + " of batch " + std::to_string(out->batches_decoded) +
-                           ": " + problem};
-        }
-        s.splits.push_back(record);
-        s.applySplit(s.ring);
-      }
-      if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "PSPL"); !e.ok()) return e;
-      ++out->batches_decoded;
-      if (stopsAt(options, out->mesh.triangleCount(), out->mesh.vertexCount())) {
-        out->stopped_early = true;
-        return {};
-      }
-    } else if (chunk.chunk_type.critical()) {
-      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
-                   chunk.chunk_type.str() + " in a progressive mesh stream"};
-    }
-    // meta was read by the caller; unknown ancillary chunks are skipped (spec 2.4).
+Error PmSteps::memory(const ChunkView& chunk) const {
+  const uint64_t need = memoryNeeded(out_->header);
+  if (need > options_.max_output_bytes)
+    return Error{Status::kResourceLimit, chunk.offset, "PHDR",
+                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
+  return {};
+}
+
+Error PmSteps::chunk(const ChunkView& chunk) {
+  if (out_->stopped_early) return {};
+  if (chunk.chunk_type == kChunkMeta)
+    return parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out_->metadata);
+  try {
+    if (chunk.chunk_type == kChunkBaseMesh) return base(chunk);
+    if (chunk.chunk_type == kChunkSplits) return batch(chunk);
+  } catch (const std::bad_alloc&) {
+    return Error{Status::kResourceLimit, out_->container.chunks[0].offset, "PHDR", "out of memory"};
   }
+  if (chunk.chunk_type.critical())
+    return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                 chunk.chunk_type.str() + " in a progressive mesh stream"};
+  return {};  // unknown ancillary chunks are skipped (spec 2.4)
+}
+
+// spec 6.4 base_mesh()
+Error PmSteps::base(const ChunkView& chunk) {
+  ProgressiveMesh::Impl& s = out_->mesh.state();
+  const PmHeader& h = s.header;
+  const uint64_t at = chunk.payloadOffset();
+  if (seen_base_) return Error{Status::kChunkOrder, chunk.offset, "PBAS", "more than one PBAS chunk"};
+  seen_base_ = true;
+  RangeDecoder rc(chunk.payload, chunk.chunk_length);
+  if (!rc.validStart())
+    return Error{Status::kBadEntropyPayload, at, "PBAS", "coded data must start with a 0 byte"};
+  DecodingCoder coder{&rc};
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::string problem = pm::codeBaseMesh(coder, *ctx_, s, &triangles);
+  if (!problem.empty()) {
+    Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
+    return Error{status, at, "PBAS", problem};
+  }
+  if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "PBAS"); !e.ok()) return e;
+  problem = s.table.build(h.base_vertex_count, triangles);
+  if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "PBAS", "the base mesh: " + problem};
+  out_->has_mesh = true;
+  if (stopsAt(options_, out_->mesh.triangleCount(), out_->mesh.vertexCount())) out_->stopped_early = true;
+  return {};
+}
+
+// spec 6.7 batch(): split_count u32, then the coded splits.
+Error PmSteps::batch(const ChunkView& chunk) {
+  ProgressiveMesh::Impl& s = out_->mesh.state();
+  const PmHeader& h = s.header;
+  const uint64_t at = chunk.payloadOffset();
+  if (!seen_base_) return Error{Status::kChunkOrder, chunk.offset, "PSPL", "PSPL before PBAS"};
+  ByteReader r(chunk.payload, chunk.chunk_length);
+  const uint32_t split_count = r.u32();
+  if (r.overrun())
+    return Error{Status::kBadChunkLength, chunk.offset + 4, "PSPL.chunk_length",
+                 "PSPL payload shorter than its 4-byte split_count"};
+  const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
+  if (out_->batches_decoded == h.batch_count)
+    return Error{Status::kSplitCountMismatch, chunk.offset, "PSPL", "more PSPL chunks than batch_count"};
+  if (split_count == 0 || split_count > remaining)
+    return Error{Status::kSplitCountMismatch, at, "PSPL.split_count",
+                 "split_count " + std::to_string(split_count) + " must be 1 to the " +
+                     std::to_string(remaining) + " splits left"};
+  coded_split_bytes_ += chunk.chunk_length;
+  const uint64_t want = std::min<uint64_t>(h.splitCount(), kSplitsPerCodedByte * coded_split_bytes_);
+  if (want > reserved_splits_) {
+    reserved_splits_ = std::min<uint64_t>(h.splitCount(), std::max(want, 2 * reserved_splits_));
+    s.reserveForSplits(reserved_splits_);
+  }
+  RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
+  if (!rc.validStart())
+    return Error{Status::kBadEntropyPayload, at + 4, "PSPL", "coded data must start with a 0 byte"};
+  DecodingCoder coder{&rc};
+  BatchCursor cursor = s.beginBatch();
+  for (uint32_t k = 0; k < split_count; ++k) {
+    SplitRecord record;
+    std::string problem = pm::codeSplit(coder, *ctx_, s, &cursor, &record);
+    if (!problem.empty()) {
+      Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
+      return Error{status, at + 4, "PSPL.vertex_split",
+                   "split " + std::to_string(k) + " of batch " + std::to_string(out_->batches_decoded) +
+                       ": " + problem};
+    }
+    s.splits.push_back(record);
+    s.applySplit(s.ring);
+  }
+  if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "PSPL"); !e.ok()) return e;
+  ++out_->batches_decoded;
+  if (stopsAt(options_, out_->mesh.triangleCount(), out_->mesh.vertexCount())) out_->stopped_early = true;
+  return {};
+}
+
+Error PmSteps::end(const Container& c) {
+  if (out_->stopped_early) return {};
+  const ProgressiveMesh::Impl& s = out_->mesh.state();
+  const PmHeader& h = s.header;
   if (c.complete) {
-    if (!seen_base)
+    if (!seen_base_)
       return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PM stream needs PBAS before MEND"};
-    if (out->batches_decoded != h.batch_count || s.splits.size() != h.splitCount())
+    if (out_->batches_decoded != h.batch_count || s.splits.size() != h.splitCount())
       return Error{Status::kSplitCountMismatch, c.end_chunk_offset, "MEND",
-                   std::to_string(out->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
+                   std::to_string(out_->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
                        " splits, but PHDR announces " + std::to_string(h.batch_count) + " with " +
                        std::to_string(h.splitCount())};
   }
   return {};
-}
-
-}  // namespace
-
-Error decodeProgressiveMesh(const uint8_t* data, size_t size, const DecodeOptions& options,
-                            DecodedMesh* out) {
-  *out = DecodedMesh{};
-  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
-  const Container& c = out->container;
-  if (c.chunks.empty()) return {};
-  if (c.chunks[0].chunk_type != kChunkMeshHeader)
-    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
-                 "not a progressive mesh stream (the content header is not PHDR; spec 1.6)"};
-  if (Error e = parsePmHeader(c.chunks[0], &out->header); !e.ok()) return e;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    if (chunk.chunk_type == kChunkMeta)
-      if (Error e = parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out->metadata);
-          !e.ok())
-        return e;
-  }
-  const uint64_t need = memoryNeeded(out->header);
-  if (need > options.max_output_bytes)
-    return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR",
-                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
-  try {
-    return decodeChunks(options, out);
-  } catch (const std::bad_alloc&) {
-    return Error{Status::kResourceLimit, c.chunks[0].offset, "PHDR", "out of memory"};
-  }
 }
 
 }  // namespace mrsv

@@ -7,6 +7,7 @@
 #include "common/byte_reader.h"
 #include "pt/pt_coding.h"
 #include "pt/pt_state.h"
+#include "pt/pt_steps.h"
 
 namespace mrsv {
 
@@ -57,121 +58,126 @@ std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTe
   return problem;
 }
 
-Error decodeChunks(const DecodeOptions& options, DecodedTetMesh* out) {
-  const Container& c = out->container;
-  ProgressiveTetMesh::Impl& s = out->mesh.state();
-  s.header = out->header;
-  const PtHeader& h = s.header;
-  pt::PtContexts ctx;
-  bool seen_base = false;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    const uint64_t at = chunk.payloadOffset();
-    if (chunk.chunk_type == kChunkTetBase) {
-      // spec 7.4 base_mesh()
-      if (seen_base) return Error{Status::kChunkOrder, chunk.offset, "TBAS", "more than one TBAS chunk"};
-      seen_base = true;
-      RangeDecoder rc(chunk.payload, chunk.chunk_length);
-      if (!rc.validStart()) return Error{Status::kBadEntropyPayload, at, "TBAS", "coded data must start with a 0 byte"};
-      DecodingCoder coder{&rc};
-      std::string problem = pt::codeBaseMesh(coder, ctx, h, &s.mesh);
-      if (!problem.empty()) {
-        const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
-        return Error{status, at, "TBAS", problem};
-      }
-      if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "TBAS"); !e.ok()) return e;
-      problem = s.startFromBase();
-      if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "TBAS", "the base mesh: " + problem};
-      out->has_mesh = true;
-      if (stopsAt(options, out->mesh.tetCount(), out->mesh.vertexCount())) {
-        out->stopped_early = true;
-        return {};
-      }
-    } else if (chunk.chunk_type == kChunkTetSplits) {
-      // spec 7.7 batch(): split_count u32, then the coded flags and splits.
-      if (!seen_base) return Error{Status::kChunkOrder, chunk.offset, "TSPL", "TSPL before TBAS"};
-      if (out->batches_decoded == h.batch_count)
-        return Error{Status::kSplitCountMismatch, chunk.offset, "TSPL", "more TSPL chunks than batch_count"};
-      ByteReader r(chunk.payload, chunk.chunk_length);
-      const uint32_t split_count = r.u32();
-      if (r.overrun())
-        return Error{Status::kBadChunkLength, chunk.offset + 4, "TSPL.chunk_length",
-                     "TSPL payload shorter than its 4-byte split_count"};
-      const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
-      if (split_count == 0 || split_count > remaining)
-        return Error{Status::kSplitCountMismatch, at, "TSPL.split_count",
-                     "split_count " + std::to_string(split_count) + " must be 1 to the " + std::to_string(remaining) +
-                         " splits left"};
-      RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
-      if (!rc.validStart())
-        return Error{Status::kBadEntropyPayload, at + 4, "TSPL", "coded data must start with a 0 byte"};
-      DecodingCoder coder{&rc};
-      const uint32_t vertices = s.mesh.vertexCount();
-      uint32_t done = 0, v = 0;
-      // Made once, not per flag: the flag loop runs about 30 times per split.
-      auto fail = [&](const std::string& problem) {
-        const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
-        return Error{status, at + 4, "TSPL.vertex_split",
-                     "batch " + std::to_string(out->batches_decoded) + ", split " + std::to_string(done) +
-                         " (vertex " + std::to_string(v) + "): " + problem};
-      };
-      for (; done < split_count; ++v) {
-        if (v == vertices) return fail("the flags end before split_count splits");
-        if (!coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], 0)) continue;
-        if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
-        ++done;
-      }
-      if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "TSPL"); !e.ok()) return e;
-      ++out->batches_decoded;
-      if (stopsAt(options, out->mesh.tetCount(), out->mesh.vertexCount())) {
-        out->stopped_early = true;
-        return {};
-      }
-    } else if (chunk.chunk_type.critical()) {
-      return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
-                   chunk.chunk_type.str() + " in a progressive tet mesh stream"};
-    }
+}  // namespace
+
+PtSteps::PtSteps(const DecodeOptions& options, DecodedTetMesh* out)
+    : options_(options), out_(out), ctx_(new pt::PtContexts) {}
+
+PtSteps::~PtSteps() = default;
+
+Error PtSteps::header(const ChunkView& chunk) {
+  if (Error e = parsePtHeader(chunk, &out_->header); !e.ok()) return e;
+  out_->mesh.state().header = out_->header;
+  return {};
+}
+
+Error PtSteps::memory(const ChunkView& chunk) const {
+  const uint64_t need = memoryNeeded(out_->header);
+  if (need > options_.max_output_bytes)
+    return Error{Status::kResourceLimit, chunk.offset, "THDR",
+                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
+  return {};
+}
+
+Error PtSteps::chunk(const ChunkView& chunk) {
+  if (out_->stopped_early) return {};
+  if (chunk.chunk_type == kChunkMeta)
+    return parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out_->metadata);
+  try {
+    if (chunk.chunk_type == kChunkTetBase) return base(chunk);
+    if (chunk.chunk_type == kChunkTetSplits) return batch(chunk);
+  } catch (const std::bad_alloc&) {
+    return Error{Status::kResourceLimit, out_->container.chunks[0].offset, "THDR", "out of memory"};
   }
+  if (chunk.chunk_type.critical())
+    return Error{Status::kChunkOrder, chunk.offset, chunk.chunk_type.str(),
+                 chunk.chunk_type.str() + " in a progressive tet mesh stream"};
+  return {};  // unknown ancillary chunks are skipped (spec 2.4)
+}
+
+// spec 7.4 base_mesh()
+Error PtSteps::base(const ChunkView& chunk) {
+  ProgressiveTetMesh::Impl& s = out_->mesh.state();
+  const PtHeader& h = s.header;
+  const uint64_t at = chunk.payloadOffset();
+  if (seen_base_) return Error{Status::kChunkOrder, chunk.offset, "TBAS", "more than one TBAS chunk"};
+  seen_base_ = true;
+  RangeDecoder rc(chunk.payload, chunk.chunk_length);
+  if (!rc.validStart()) return Error{Status::kBadEntropyPayload, at, "TBAS", "coded data must start with a 0 byte"};
+  DecodingCoder coder{&rc};
+  std::string problem = pt::codeBaseMesh(coder, *ctx_, h, &s.mesh);
+  if (!problem.empty()) {
+    const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadBaseMesh;
+    return Error{status, at, "TBAS", problem};
+  }
+  if (Error e = checkPayloadEnd(rc, chunk.chunk_length, at, "TBAS"); !e.ok()) return e;
+  problem = s.startFromBase();
+  if (!problem.empty()) return Error{Status::kBadBaseMesh, at, "TBAS", "the base mesh: " + problem};
+  out_->has_mesh = true;
+  if (stopsAt(options_, out_->mesh.tetCount(), out_->mesh.vertexCount())) out_->stopped_early = true;
+  return {};
+}
+
+// spec 7.7 batch(): split_count u32, then the coded flags and splits.
+Error PtSteps::batch(const ChunkView& chunk) {
+  ProgressiveTetMesh::Impl& s = out_->mesh.state();
+  const PtHeader& h = s.header;
+  const uint64_t at = chunk.payloadOffset();
+  pt::PtContexts& ctx = *ctx_;
+  if (!seen_base_) return Error{Status::kChunkOrder, chunk.offset, "TSPL", "TSPL before TBAS"};
+  if (out_->batches_decoded == h.batch_count)
+    return Error{Status::kSplitCountMismatch, chunk.offset, "TSPL", "more TSPL chunks than batch_count"};
+  ByteReader r(chunk.payload, chunk.chunk_length);
+  const uint32_t split_count = r.u32();
+  if (r.overrun())
+    return Error{Status::kBadChunkLength, chunk.offset + 4, "TSPL.chunk_length",
+                 "TSPL payload shorter than its 4-byte split_count"};
+  const uint32_t remaining = h.splitCount() - static_cast<uint32_t>(s.splits.size());
+  if (split_count == 0 || split_count > remaining)
+    return Error{Status::kSplitCountMismatch, at, "TSPL.split_count",
+                 "split_count " + std::to_string(split_count) + " must be 1 to the " + std::to_string(remaining) +
+                     " splits left"};
+  RangeDecoder rc(chunk.payload + 4, chunk.chunk_length - 4);
+  if (!rc.validStart())
+    return Error{Status::kBadEntropyPayload, at + 4, "TSPL", "coded data must start with a 0 byte"};
+  DecodingCoder coder{&rc};
+  const uint32_t vertices = s.mesh.vertexCount();
+  uint32_t done = 0, v = 0;
+  // Made once, not per flag: the flag loop runs about 30 times per split.
+  auto fail = [&](const std::string& problem) {
+    const Status status = rc.overrun() ? Status::kBadEntropyPayload : Status::kBadVertexSplit;
+    return Error{status, at + 4, "TSPL.vertex_split",
+                 "batch " + std::to_string(out_->batches_decoded) + ", split " + std::to_string(done) +
+                     " (vertex " + std::to_string(v) + "): " + problem};
+  };
+  for (; done < split_count; ++v) {
+    if (v == vertices) return fail("the flags end before split_count splits");
+    if (!coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], 0)) continue;
+    if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
+    ++done;
+  }
+  if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "TSPL"); !e.ok()) return e;
+  ++out_->batches_decoded;
+  if (stopsAt(options_, out_->mesh.tetCount(), out_->mesh.vertexCount())) out_->stopped_early = true;
+  return {};
+}
+
+Error PtSteps::end(const Container& c) {
+  if (out_->stopped_early) return {};
+  const ProgressiveTetMesh::Impl& s = out_->mesh.state();
+  const PtHeader& h = s.header;
   if (c.complete) {
-    if (!seen_base)
+    if (!seen_base_)
       return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PT stream needs TBAS before MEND"};
-    if (out->batches_decoded != h.batch_count || s.splits.size() != h.splitCount() ||
+    if (out_->batches_decoded != h.batch_count || s.splits.size() != h.splitCount() ||
         s.mesh.tets.size() != h.tet_count)
       return Error{Status::kSplitCountMismatch, c.end_chunk_offset, "MEND",
-                   std::to_string(out->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
+                   std::to_string(out_->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
                        " splits and " + std::to_string(s.mesh.tets.size()) + " tets, but THDR announces " +
                        std::to_string(h.batch_count) + " with " + std::to_string(h.splitCount()) + " and " +
                        std::to_string(h.tet_count)};
   }
   return {};
-}
-
-}  // namespace
-
-Error decodeProgressiveTetMesh(const uint8_t* data, size_t size, const DecodeOptions& options, DecodedTetMesh* out) {
-  *out = DecodedTetMesh{};
-  if (Error e = readContainer(data, size, options.container, &out->container); !e.ok()) return e;
-  const Container& c = out->container;
-  if (c.chunks.empty()) return {};
-  if (c.chunks[0].chunk_type != kChunkTetHeader)
-    return Error{Status::kUnsupportedProfile, c.chunks[0].offset, c.chunks[0].chunk_type.str(),
-                 "not a progressive tet mesh stream (the content header is not THDR; spec 1.6)"};
-  if (Error e = parsePtHeader(c.chunks[0], &out->header); !e.ok()) return e;
-  for (size_t i = 1; i < c.chunks.size(); ++i) {
-    const ChunkView& chunk = c.chunks[i];
-    if (chunk.chunk_type == kChunkMeta)
-      if (Error e = parseMetadata(chunk.payload, chunk.chunk_length, chunk.payloadOffset(), &out->metadata); !e.ok())
-        return e;
-  }
-  const uint64_t need = memoryNeeded(out->header);
-  if (need > options.max_output_bytes)
-    return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR",
-                 "the mesh needs about " + std::to_string(need) + " bytes, above the decoder's limit"};
-  try {
-    return decodeChunks(options, out);
-  } catch (const std::bad_alloc&) {
-    return Error{Status::kResourceLimit, c.chunks[0].offset, "THDR", "out of memory"};
-  }
 }
 
 }  // namespace mrsv

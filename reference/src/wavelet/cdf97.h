@@ -7,6 +7,7 @@
 // of 4.11; only the synthesis of one level differs.
 #pragma once
 
+#include <climits>
 #include <cstddef>
 #include <cstdint>
 
@@ -25,8 +26,10 @@ constexpr int64_t kCdf97K = 20638897;       //  1.230174104914001
 
 // spec: 4.11.3. Fixed-point synthesis of every level above `stop_level`, the
 // 9/7 counterpart of synthesizeFixed (which calls it for such plans); the
-// same contract on `data`, saturation to +-kValueLimit included.
-void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level);
+// same contract on `data`, saturation to +-kValueLimit included (start_level
+// as there).
+void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
+                          int start_level = INT_MAX);
 
 // Where the last pass of a synthesis may put its results instead of `data`:
 // row(context, x, y, z, values, n) receives the values of positions (x, y, z)
@@ -44,7 +47,7 @@ struct SynthesisRows {
 // false, with the whole result in `data` and `rows` not called, otherwise
 // (the last pass along x, or nothing to synthesise).
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
-                          const SynthesisRows& rows);
+                          const SynthesisRows& rows, int start_level = INT_MAX);
 
 // The values of level 1 in the Mallat layout (the low-pass block of level 1
 // and the detail bands of level 1), given a row at a time: row(context, y, z,

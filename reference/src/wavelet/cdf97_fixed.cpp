@@ -30,6 +30,7 @@
 // - The arithmetic on the runs is in cdf97_kernels.h: the scalar reference,
 //   or an equivalent vectorised implementation.
 #include <algorithm>
+#include <climits>
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -178,13 +179,13 @@ size_t batchWidth(size_t f, size_t box_width) {
 // The walk of 4.11.3; with `rows`, the last pass, when it runs along y or z,
 // hands its rows to it (see cdf97.h). Returns whether it did.
 bool synthesize(const GridPlan& plan, int64_t* data, int stop_level, const Cdf97Kernels& kernels,
-                const SynthesisRows* rows) {
+                const SynthesisRows* rows, int start_level = INT_MAX) {
   if (!isValidGridPlan(plan)) return false;
   if (stop_level < 0) stop_level = 0;
   const size_t px = plan.axis[0].size(0), pxy = px * plan.axis[1].size(0);
   Scratch scratch;
   bool emitted = false;
-  for (int level = plan.maxLevels(); level > stop_level; --level) {
+  for (int level = std::min(plan.maxLevels(), start_level); level > stop_level; --level) {
     // spec: 4.11.3 the axes x, y, z in this order over the box of the level.
     size_t box[3];
     bool split[3];
@@ -305,13 +306,13 @@ void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
   synthesize(plan, data, stop_level, kernels, nullptr);
 }
 
-void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level) {
-  synthesize(plan, data, stop_level, cdf97Kernels(), nullptr);
+void synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level, int start_level) {
+  synthesize(plan, data, stop_level, cdf97Kernels(), nullptr, start_level);
 }
 
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,
-                          const SynthesisRows& rows) {
-  return synthesize(plan, data, stop_level, cdf97Kernels(), &rows);
+                          const SynthesisRows& rows, int start_level) {
+  return synthesize(plan, data, stop_level, cdf97Kernels(), &rows, start_level);
 }
 
 bool synthesizeFixedCdf97(const GridPlan& plan, int64_t* data, int stop_level,

@@ -656,12 +656,12 @@ void synthesizeLevel(const GridPlan& plan, int level, int64_t* data, Scratch* sc
 }  // namespace
 
 // spec: 4.5
-void synthesizeFixed(const GridPlan& plan, int64_t* data, int stop_level) {
+void synthesizeFixed(const GridPlan& plan, int64_t* data, int stop_level, int start_level) {
   if (!isValidGridPlan(plan)) return;
-  if (isCdf97(plan.axis[0].order)) return synthesizeFixedCdf97(plan, data, stop_level);
+  if (isCdf97(plan.axis[0].order)) return synthesizeFixedCdf97(plan, data, stop_level, start_level);
   if (stop_level < 0) stop_level = 0;
   Scratch scratch;
-  for (int level = plan.maxLevels(); level > stop_level; --level)
+  for (int level = std::min(plan.maxLevels(), start_level); level > stop_level; --level)
     synthesizeLevel(plan, level, data, &scratch);
 }
 

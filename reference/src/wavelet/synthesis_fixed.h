@@ -4,6 +4,7 @@
 // Decode side: integers only, no Eigen.
 #pragma once
 
+#include <climits>
 #include <cstdint>
 
 #include "wavelet/axis_plan.h"
@@ -29,7 +30,13 @@ constexpr int64_t kValueLimit = (int64_t{1} << 35) - 1;
 // with an arithmetic (flooring) shift, where sat clamps to [-kValueLimit, kValueLimit].
 // The int64 accumulator cannot overflow: see kAccumulatorBound below and spec 4.6.
 // Does nothing when !isValidGridPlan(plan); `data` must hold plan.paddedCount() values.
-void synthesizeFixed(const GridPlan& plan, int64_t* data, int stop_level = 0);
+//
+// With start_level below maxLevels, the levels above it are taken as already
+// synthesised (a call that stopped at start_level): the synthesis resumes
+// there, so that a decoder can go down one level at a time as bands arrive
+// and end with the same values as one call.
+void synthesizeFixed(const GridPlan& plan, int64_t* data, int stop_level = 0,
+                     int start_level = INT_MAX);
 
 // spec: 4.6. The largest |accumulator| any row can reach: every partial sum of a
 // row is bounded by the sum of |tap| * |value| over the row, and the table generator
