@@ -52,35 +52,23 @@ import sys
 import tempfile
 
 
-def check_levels(args, vector, path, out):
-    """spec 6.8: each listed level of a mesh decodes to the listed canonical output."""
-    for level in vector.get("levels", []):
+def check_outputs(template, entries, key, label, args, path, out):
+    """Each entry of a vector's list (`levels` of a mesh, spec 6.8; `regions` of a tiled grid,
+    spec 11.5) decodes, by `template` with {key} replaced by the entry's value, to the listed
+    canonical output."""
+    for entry in entries:
         if os.path.exists(out):
             os.remove(out)
-        cmd = [part.replace("{in}", path).replace("{out}", out).replace("{vertices}", str(level["vertices"]))
-               for part in shlex.split(args.level_decoder)]
+        value = str(entry[key])
+        cmd = [part.replace("{in}", path).replace("{out}", out).replace("{" + key + "}", value)
+               for part in shlex.split(template)]
         run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
+        what = label.format(value)
         if run.returncode != 0 or not os.path.exists(out):
-            return f"level of {level['vertices']} vertices: exit {run.returncode}"
+            return f"{what}: exit {run.returncode}"
         digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
-        if digest != level["sha256"]:
-            return f"level of {level['vertices']} vertices: sha256 {digest}, expected {level['sha256']}"
-    return None
-
-
-def check_regions(args, vector, path, out):
-    """spec 11.5: each listed region of a tiled grid decodes to the listed canonical region output."""
-    for region in vector.get("regions", []):
-        if os.path.exists(out):
-            os.remove(out)
-        cmd = [part.replace("{in}", path).replace("{out}", out).replace("{region}", region["region"])
-               for part in shlex.split(args.region_decoder)]
-        run = subprocess.run(cmd, capture_output=True, timeout=args.timeout)
-        if run.returncode != 0 or not os.path.exists(out):
-            return f"region {region['region']}: exit {run.returncode}"
-        digest = hashlib.sha256(open(out, "rb").read()).hexdigest()
-        if digest != region["sha256"]:
-            return f"region {region['region']}: sha256 {digest}, expected {region['sha256']}"
+        if digest != entry["sha256"]:
+            return f"{what}: sha256 {digest}, expected {entry['sha256']}"
     return None
 
 
@@ -204,9 +192,11 @@ def main():
                         if digest != vector["sha256"]:
                             problem = f"output sha256 {digest}, expected {vector['sha256']}"
                         elif args.level_decoder:
-                            problem = check_levels(args, vector, path, out)
+                            problem = check_outputs(args.level_decoder, vector.get("levels", []), "vertices",
+                                                    "level of {} vertices", args, path, out)
                         if problem is None and args.region_decoder:
-                            problem = check_regions(args, vector, path, out)
+                            problem = check_outputs(args.region_decoder, vector.get("regions", []), "region",
+                                                    "region {}", args, path, out)
             else:
                 code = "E%d" % vector["error"]
                 if run.returncode == 0:

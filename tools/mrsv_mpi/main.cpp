@@ -267,7 +267,9 @@ int runEncode(int argc, char** argv) {
   }
   std::vector<std::vector<uint32_t>> per_tile(n);
   for (uint64_t t = 0; t < n; ++t) per_tile[t].assign(lengths.begin() + first[t], lengths.begin() + first[t + 1]);
-  const std::vector<uint8_t> index = serializeTileIndex(per_tile);
+  std::vector<uint8_t> index, tile_counts;
+  if (Error e = tileIndexPayload(per_tile, &index, &tile_counts); !e.ok())
+    return agree(cli::kExitInvalidData, in + ": " + e.field + ": " + e.message);
   WaveletEncodeReport report;
   const std::vector<uint8_t> head = tiledStreamHead(h, tally.record(metadata, options, &report), tiling, index);
   ChunkView tidx{kChunkTileIndex, static_cast<uint32_t>(index.size()), 0,

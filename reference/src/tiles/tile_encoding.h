@@ -44,6 +44,11 @@ struct ErrorTally {
   static Metadata probe(const Metadata& metadata);
 };
 
+// The TIDX payload for these per-tile chunk payload lengths and each tile's
+// chunk count; refuses an index or a chunk count beyond the limits of Annex B.1.
+Error tileIndexPayload(const std::vector<std::vector<uint32_t>>& lengths, std::vector<uint8_t>* index,
+                       std::vector<uint8_t>* counts);
+
 // spec 2.3: the framed bytes of a chunk (type, length, payload, CRC-32C).
 std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, uint32_t length);
 

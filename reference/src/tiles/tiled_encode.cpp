@@ -73,7 +73,6 @@ TileResult encodeTileSamples(const TileGrid& tiles, uint64_t tile, const std::ve
     r.chunks.emplace_back(chunk.chunk_type, std::vector<uint8_t>(chunk.payload, chunk.payload + chunk.chunk_length));
     r.bytes += kChunkHeaderSize + uint64_t{chunk.chunk_length} + kChunkCrcSize;
   }
-  if (r.chunks.size() > 255) r.error = invalid("tile", "a tile has more than 255 chunks");
   r.sse = report.sum_squared_error;
   r.max_abs = report.max_abs_error;
   r.levels = report.levels;
@@ -251,34 +250,24 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
     rep.iterations = 1;
   }
   // The stream: GHDR, meta, TINF, TIDX, then the tile chunks round by round.
-  uint64_t chunks = 0;
-  for (const TileResult& r : results) {
-    tally.addTile(r);
-    chunks += r.chunks.size();
-  }
+  for (const TileResult& r : results) tally.addTile(r);
   const Metadata recorded = tally.record(metadata, options, &rep);
   std::vector<std::vector<uint32_t>> lengths(n_tiles);
-  std::vector<uint8_t> counts(n_tiles);
-  for (uint64_t t = 0; t < n_tiles; ++t) {
-    counts[t] = static_cast<uint8_t>(results[t].chunks.size());
+  for (uint64_t t = 0; t < n_tiles; ++t)
     for (const auto& chunk : results[t].chunks) lengths[t].push_back(static_cast<uint32_t>(chunk.second.size()));
-  }
-  const std::vector<uint8_t> index = serializeTileIndex(lengths);
-  if (index.size() > kMaxChunkPayload) return invalid("tile_size", "the tile index exceeds the chunk limit");
-  if (chunks + 6 > kMaxChunks)
-    return invalid("tile_size", "the tiles make " + std::to_string(chunks) + " chunks, above the limit of " +
-                                    std::to_string(kMaxChunks) + " (use larger tiles)");
-  ContainerWriter writer;
-  writer.addChunk(kChunkGridHeader, serializeGridHeader(h));
-  writer.addChunk(kChunkMeta, serializeMetadata(recorded));
-  writer.addChunk(kChunkTiling, serializeTilingHeader(tiling));
-  writer.addChunk(kChunkTileIndex, index);
+  std::vector<uint8_t> index, counts;
+  if (Error e = tileIndexPayload(lengths, &index, &counts); !e.ok()) return e;
+  std::vector<uint8_t> stream = tiledStreamHead(h, recorded, tiling, index);
   for (const auto& [tile, nth] : tileChunkOrder(counts)) {
     auto& chunk = results[tile].chunks[nth];
-    writer.addChunk(chunk.first, chunk.second);
+    const std::vector<uint8_t> framed =
+        framedChunk(chunk.first, chunk.second.data(), static_cast<uint32_t>(chunk.second.size()));
+    stream.insert(stream.end(), framed.begin(), framed.end());
     std::vector<uint8_t>().swap(chunk.second);  // written: free it
   }
-  *out = writer.finish();
+  const std::vector<uint8_t> end = framedChunk(kChunkEnd, nullptr, 0);
+  stream.insert(stream.end(), end.begin(), end.end());
+  *out = std::move(stream);
   rep.bytes = out->size();
   rep.bits_per_sample = 8.0 * static_cast<double>(out->size()) / static_cast<double>(h.sampleCount());
   if (report) *report = rep;

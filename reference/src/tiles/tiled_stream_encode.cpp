@@ -38,6 +38,23 @@ struct SpilledChunk {
 
 }  // namespace
 
+Error tileIndexPayload(const std::vector<std::vector<uint32_t>>& lengths, std::vector<uint8_t>* index,
+                       std::vector<uint8_t>* counts) {
+  uint64_t chunks = 0;
+  counts->resize(lengths.size());
+  for (size_t t = 0; t < lengths.size(); ++t) {
+    if (lengths[t].size() > 255) return invalid("tile", "tile " + std::to_string(t) + " has more than 255 chunks");
+    (*counts)[t] = static_cast<uint8_t>(lengths[t].size());
+    chunks += lengths[t].size();
+  }
+  *index = serializeTileIndex(lengths);
+  if (index->size() > kMaxChunkPayload) return invalid("tile_size", "the tile index exceeds the chunk limit");
+  if (chunks + 6 > kMaxChunks)
+    return invalid("tile_size", "the tiles make " + std::to_string(chunks) + " chunks, above the limit of " +
+                                    std::to_string(kMaxChunks) + " (use larger tiles)");
+  return {};
+}
+
 std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, uint32_t length) {
   std::vector<uint8_t> out(kChunkHeaderSize + size_t{length} + kChunkCrcSize);
   for (int i = 0; i < 4; ++i) out[i] = static_cast<uint8_t>(type.c[i]);
@@ -118,18 +135,10 @@ Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader,
   if (std::fflush(spill.get()) != 0) return ioFailure("cannot write the temporary file of coded tiles");
   // The stream, as encodeTiledGrid() writes it.
   std::vector<std::vector<uint32_t>> lengths(spilled.size());
-  std::vector<uint8_t> counts(spilled.size());
-  uint64_t chunks = 0;
-  for (size_t t = 0; t < spilled.size(); ++t) {
-    counts[t] = static_cast<uint8_t>(spilled[t].size());
+  for (size_t t = 0; t < spilled.size(); ++t)
     for (const SpilledChunk& c : spilled[t]) lengths[t].push_back(c.length);
-    chunks += spilled[t].size();
-  }
-  const std::vector<uint8_t> index = serializeTileIndex(lengths);
-  if (index.size() > kMaxChunkPayload) return invalid("tile_size", "the tile index exceeds the chunk limit");
-  if (chunks + 6 > kMaxChunks)
-    return invalid("tile_size", "the tiles make " + std::to_string(chunks) + " chunks, above the limit of " +
-                                    std::to_string(kMaxChunks) + " (use larger tiles)");
+  std::vector<uint8_t> index, counts;
+  if (Error e = tileIndexPayload(lengths, &index, &counts); !e.ok()) return e;
   WaveletEncodeReport rep;
   rep.iterations = 1;
   const Metadata recorded = tally.record(metadata, options, &rep);
