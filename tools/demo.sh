@@ -223,12 +223,13 @@ echo "== 11. tiles (spec 11): a terrain in 256 x 256 tiles, a window decoded fro
 rainier=$root/../shared/data/terrain/srtm3_N46W122_mt_rainier_1201x1201_int16le.raw.zst
 if [ -f "$rainier" ]; then
   zstd -dqf "$rainier" -o "$out/rainier.raw"
-  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 \
+  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 --bound-route residual \
     "$out/rainier.raw" "$out/rainier_tiled.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
   "$mrsv" info "$out/rainier_tiled.mrsv" | grep "^content" | sed 's/^/  /'
   "$mrsv" decode --region 400,300,656,556 "$out/rainier_tiled.mrsv" "$out/rainier_window.nrrd" 2>&1 |
     sed "s|$out/|demo/out/|; s/^/  /"
-  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 --out-of-core --quiet \
+  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --tile 256 --max-error 1 --bound-route residual \
+    --out-of-core --quiet \
     "$out/rainier.raw" "$out/rainier_ooc.mrsv"
   cmp -s "$out/rainier_tiled.mrsv" "$out/rainier_ooc.mrsv" &&
     echo "  out of core (a row of tiles in memory at a time): the same bytes"

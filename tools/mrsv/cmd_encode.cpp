@@ -441,11 +441,12 @@ int runEncode(int argc, char** argv) {
   progress.update(0.9);
   if (!writeFileAtomically(out, stream, &error)) return fail(cmd, out + ": " + error, kExitIo);
   if (coding == "wavelet" && !args.flag("quiet") && !tile_sizes.empty()) {
-    std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, tiled, "
-                         "up to %d levels per tile\n",
+    const std::string levels = report.levels > 0 ? "up to " + std::to_string(report.levels) + " levels per tile"
+                                                 : "levels 0 in every tile (predictive route, not progressive)";
+    std::fprintf(stderr, "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, tiled, %s\n",
                  out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
                  std::isinf(report.psnr) ? "inf" : std::to_string(report.psnr).c_str(), report.max_abs_error,
-                 report.levels);
+                 levels.c_str());
   } else if (coding == "wavelet" && !args.flag("quiet")) {
     std::fprintf(stderr,
                  "mrsv encode: %s: %llu bytes, %.4f bits/sample, PSNR %s dB, max error %g, "
