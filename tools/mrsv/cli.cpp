@@ -2,9 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <limits>
 
 namespace mrsv::cli {
 namespace {
@@ -96,6 +100,62 @@ bool parseUint64(const std::string& text, uint64_t* out) {
   if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos)
     return false;
   *out = std::stoull(text);
+  return true;
+}
+
+bool parseWholeNumberList(const std::string& text, uint64_t lo, uint64_t hi, std::vector<uint64_t>* out) {
+  out->clear();
+  for (size_t start = 0; start <= text.size();) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    uint64_t v = 0;
+    if (!parseUint64(text.substr(start, comma - start), &v) || v < lo || v > hi) return false;
+    out->push_back(v);
+    start = comma + 1;
+  }
+  return true;
+}
+
+bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error) {
+  char* end = nullptr;
+  errno = 0;
+  if (type == SampleType::kFloat32 || type == SampleType::kFloat64) {
+    double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') {
+      *error = "--nodata '" + text + "' is not a number";
+      return false;
+    }
+    if (type == SampleType::kFloat32) {
+      float f = static_cast<float>(v);
+      if (std::isfinite(v) && !std::isfinite(f)) {
+        *error = "--nodata " + text + " is out of range for float32";
+        return false;
+      }
+      uint32_t b;
+      std::memcpy(&b, &f, 4);
+      *bits = b;
+    } else {
+      std::memcpy(bits, &v, 8);
+    }
+    return true;
+  }
+  long long v = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno == ERANGE) {
+    *error = "--nodata '" + text + "' is not a whole number";
+    return false;
+  }
+  long long lo = 0, hi = 0;
+  switch (type) {
+    case SampleType::kUint8: lo = 0; hi = 255; break;
+    case SampleType::kInt16: lo = -32768; hi = 32767; break;
+    case SampleType::kUint16: lo = 0; hi = 65535; break;
+    default: lo = std::numeric_limits<int32_t>::min(); hi = std::numeric_limits<int32_t>::max();
+  }
+  if (v < lo || v > hi) {
+    *error = "--nodata " + text + " is out of range for " + sampleTypeName(type);
+    return false;
+  }
+  uint64_t mask = sampleSize(type) == 8 ? ~uint64_t{0} : (uint64_t{1} << (8 * sampleSize(type))) - 1;
+  *bits = static_cast<uint64_t>(v) & mask;
   return true;
 }
 

@@ -51,6 +51,11 @@ int fail(const char* command, const std::string& message, int exit_code);
 bool parseUint64(const std::string& text, uint64_t* out);
 // A finite number written whole (strtod syntax), e.g. "0.5", "1e-3".
 bool parseDouble(const std::string& text, double* out);
+// "A[,B[,...]]" of whole numbers, each from lo to hi. False on anything else.
+bool parseWholeNumberList(const std::string& text, uint64_t lo, uint64_t hi, std::vector<uint64_t>* out);
+// The --nodata text as the bit pattern of a sample of `type` (spec 3.1
+// nodata_bits); false with `error` set when it is not a value of that type.
+bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error);
 
 // `options` with the stop of a progressive mesh decode at the level asked for
 // (DecodeOptions::stop_*): --<cells_option> N decodes up to the first batch past

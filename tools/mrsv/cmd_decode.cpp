@@ -115,16 +115,10 @@ Error decodeInput(StreamInput* input, const std::vector<uint8_t>& head, StreamDe
 // "X0,Y0[,Z0],X1,Y1[,Z1]": a half-open box of samples.
 bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
   std::vector<uint64_t> v;
-  for (size_t start = 0; start <= text.size();) {
-    size_t comma = std::min(text.find(',', start), text.size());
-    uint64_t x = 0;
-    if (!parseUint64(text.substr(start, comma - start), &x) || x > kMaxGridAxis) {
-      *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
-               std::to_string(kMaxGridAxis);
-      return false;
-    }
-    v.push_back(x);
-    start = comma + 1;
+  if (!parseWholeNumberList(text, 0, kMaxGridAxis, &v)) {
+    *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
+             std::to_string(kMaxGridAxis);
+    return false;
   }
   if (v.size() != 2 && v.size() != 4 && v.size() != 6) {
     *error = "--region '" + text + "': give X0,X1 or X0,Y0,X1,Y1 or X0,Y0,Z0,X1,Y1,Z1";

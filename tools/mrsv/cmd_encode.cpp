@@ -149,51 +149,6 @@ bool parseRegion(const std::string& text, RegionOfInterest* roi, std::string* er
   return true;
 }
 
-// Converts the --nodata text to the sample type's bit pattern.
-bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error) {
-  char* end = nullptr;
-  errno = 0;
-  if (type == SampleType::kFloat32 || type == SampleType::kFloat64) {
-    double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0') {
-      *error = "--nodata '" + text + "' is not a number";
-      return false;
-    }
-    if (type == SampleType::kFloat32) {
-      float f = static_cast<float>(v);
-      if (std::isfinite(v) && !std::isfinite(f)) {
-        *error = "--nodata " + text + " is out of range for float32";
-        return false;
-      }
-      uint32_t b;
-      std::memcpy(&b, &f, 4);
-      *bits = b;
-    } else {
-      std::memcpy(bits, &v, 8);
-    }
-    return true;
-  }
-  long long v = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno == ERANGE) {
-    *error = "--nodata '" + text + "' is not a whole number";
-    return false;
-  }
-  long long lo = 0, hi = 0;
-  switch (type) {
-    case SampleType::kUint8: lo = 0; hi = 255; break;
-    case SampleType::kInt16: lo = -32768; hi = 32767; break;
-    case SampleType::kUint16: lo = 0; hi = 65535; break;
-    default: lo = std::numeric_limits<int32_t>::min(); hi = std::numeric_limits<int32_t>::max();
-  }
-  if (v < lo || v > hi) {
-    *error = "--nodata " + text + " is out of range for " + sampleTypeName(type);
-    return false;
-  }
-  uint64_t mask = sampleSize(type) == 8 ? ~uint64_t{0} : (uint64_t{1} << (8 * sampleSize(type))) - 1;
-  *bits = static_cast<uint64_t>(v) & mask;
-  return true;
-}
-
 }  // namespace
 
 int runEncode(int argc, char** argv) {
@@ -341,15 +296,11 @@ int runEncode(int argc, char** argv) {
   if (args.has("tile")) {
     if (coding == "stored") return fail(cmd, "--tile needs --coding wavelet", kExitUsage);
     const std::string& text = args.value("tile");
-    for (size_t start = 0; start <= text.size();) {
-      size_t comma = std::min(text.find(',', start), text.size());
-      uint64_t v = 0;
-      if (!parseUint64(text.substr(start, comma - start), &v) || v < 1 || v > kMaxGridAxis)
-        return fail(cmd, "--tile '" + text + "': each size must be a whole number from 1 to " +
-                             std::to_string(kMaxGridAxis), kExitUsage);
-      tile_sizes.push_back(static_cast<uint32_t>(v));
-      start = comma + 1;
-    }
+    std::vector<uint64_t> sizes;
+    if (!parseWholeNumberList(text, 1, kMaxGridAxis, &sizes))
+      return fail(cmd, "--tile '" + text + "': each size must be a whole number from 1 to " +
+                           std::to_string(kMaxGridAxis), kExitUsage);
+    tile_sizes.assign(sizes.begin(), sizes.end());
     if (tile_sizes.size() > 3) return fail(cmd, "--tile takes at most 3 sizes", kExitUsage);
   }
   TiledEncodeOptions tiled;

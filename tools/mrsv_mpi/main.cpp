@@ -44,7 +44,7 @@ const char kHelp[] =
     "  --dims X[,Y[,Z]]      grid size in samples (IN is headerless raw, x fastest)\n"
     "  --type T              uint8, int16, uint16, int32, float32, float64\n"
     "  --endian little|big   byte order of IN (default little)\n"
-    "  --nodata V            integer sample value that marks missing data\n"
+    "  --nodata V            sample value that marks missing data\n"
     "  --tile N[,N[,N]]      tile size (required)\n"
     "  --lossless            every sample exact (the default)\n"
     "  --max-error D         every sample within D (integer samples)\n"
@@ -70,21 +70,6 @@ int agree(int status, const std::string& message) {
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   if (rank == first) std::fprintf(stderr, "mrsv-mpi: %s\n", message.c_str());
   return worst;
-}
-
-std::vector<uint32_t> parseSizes(const std::string& text, std::string* error) {
-  std::vector<uint32_t> out;
-  for (size_t start = 0; start <= text.size();) {
-    size_t comma = std::min(text.find(',', start), text.size());
-    uint64_t v = 0;
-    if (!cli::parseUint64(text.substr(start, comma - start), &v) || v < 1 || v > kMaxGridAxis) {
-      *error = "'" + text + "': sizes are whole numbers from 1 to " + std::to_string(kMaxGridAxis);
-      return {};
-    }
-    out.push_back(static_cast<uint32_t>(v));
-    start = comma + 1;
-  }
-  return out;
 }
 
 // MPI-IO to a temporary name beside `path`, renamed by rank 0 when every rank
@@ -147,19 +132,18 @@ int runEncode(int argc, char** argv) {
   if (!parseSampleType(args.value("type"), &header.sample_type))
     return agree(cli::kExitUsage, "--type '" + args.value("type") + "' is not a sample type");
   if (args.has("nodata")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(args.value("nodata").c_str(), &end, 10);
-    const size_t bytes = sampleSize(header.sample_type);
-    if (*end != '\0' || header.sample_type == SampleType::kFloat32 || header.sample_type == SampleType::kFloat64)
-      return agree(cli::kExitUsage, "--nodata takes an integer for integer samples");
-    header.nodata_bits = static_cast<uint64_t>(v) & (bytes == 8 ? ~uint64_t{0} : (uint64_t{1} << (8 * bytes)) - 1);
+    if (!cli::parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))
+      return agree(cli::kExitUsage, error);
     header.grid_flags |= kGridFlagHasNodata;
   }
-  const std::vector<uint32_t> sizes = parseSizes(args.value("tile"), &error);
-  if (sizes.empty() || (sizes.size() != 1 && sizes.size() != header.num_dims))
-    return agree(cli::kExitUsage, "--tile: " + (error.empty() ? "give 1 size or one per axis" : error));
+  std::vector<uint64_t> sizes;
+  if (!cli::parseWholeNumberList(args.value("tile"), 1, kMaxGridAxis, &sizes) ||
+      (sizes.size() != 1 && sizes.size() != header.num_dims))
+    return agree(cli::kExitUsage, "--tile '" + args.value("tile") + "': give 1 size or one per axis, each from 1 to " +
+                                      std::to_string(kMaxGridAxis));
   TiledEncodeOptions tiled;
-  for (int a = 0; a < 3; ++a) tiled.tile_size[a] = a >= header.num_dims ? 1 : sizes[std::min<size_t>(a, sizes.size() - 1)];
+  for (int a = 0; a < 3; ++a)
+    tiled.tile_size[a] = a >= header.num_dims ? 1 : static_cast<uint32_t>(sizes[std::min<size_t>(a, sizes.size() - 1)]);
   tiled.threads = 1;
   uint64_t number = 0;
   if (args.has("threads")) {
@@ -330,7 +314,7 @@ int runDecode(int argc, char** argv) {
   GridRegion band;
   for (int a = 0; a < 3; ++a) band.hi[a] = sizes[a];
   band.lo[axis] = std::min(sizes[axis], rank * per_rank * probe.tile_size[axis]);
-  band.hi[axis] = std::min<uint64_t>(sizes[axis], uint64_t{rank + 1} * per_rank * probe.tile_size[axis]);
+  band.hi[axis] = std::min<uint64_t>(sizes[axis], static_cast<uint64_t>(rank + 1) * per_rank * probe.tile_size[axis]);
   DecodedGrid part;
   DecodeOptions options;
   if (args.has("threads")) {

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "common/byte_reader.h"
-#include "common/crc32c.h"
+#include "bitstream/container_framer.h"
 #include "tiles/tile_decode.h"
 
 namespace mrsv {
@@ -60,33 +60,24 @@ Error readHead(ByteSource& source, std::vector<uint8_t>* head, bool* whole_file)
   return readAll();
 }
 
-// spec 2.3 framing of one tile chunk read at its index offset: the checks
-// readContainer makes, with the same codes and offsets.
-Error frameChunk(const std::vector<uint8_t>& bytes, uint64_t offset, bool verify, ChunkView* out) {
+// spec 2.3 framing of one tile chunk read at its index offset, by the
+// container's own framer: the checks readContainer makes, with the same codes
+// and offsets. `bytes` holds the extent TIDX gives; a chunk_length other than
+// that is 208 (11.1 rule 5), reported before the CRC, which cannot be read at
+// the chunk's own length without reading past what the index locates.
+Error frameChunk(const std::vector<uint8_t>& bytes, uint64_t offset, const ContainerOptions& options,
+                 ChunkView* out) {
+  ContainerFramer framer(options);
   ChunkView chunk;
-  chunk.offset = offset;
-  std::memcpy(chunk.chunk_type.c, bytes.data(), 4);
-  ByteReader r(bytes.data() + 4, 4);
-  chunk.chunk_length = r.u32();
-  for (char ch : chunk.chunk_type.c)
-    if (!((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')))
-      return Error{Status::kBadChunkType, offset, "chunk_type", "a chunk type must be four ASCII letters"};
-  // `bytes` holds the extent TIDX gives; a chunk_length other than that is
-  // 208 (11.1 rule 5), reported before the CRC, which cannot be read at the
-  // chunk's own length without reading past what the index locates.
+  if (Error e = framer.chunkHeader(bytes.data(), offset, &chunk); !e.ok()) return e;
   if (uint64_t{kChunkHeaderSize} + chunk.chunk_length + kChunkCrcSize != bytes.size())
     return Error{Status::kBadTileIndex, offset + 4, chunk.chunk_type.str() + ".chunk_length",
                  "the chunk is " + std::to_string(chunk.chunk_length) + " bytes but TIDX says " +
                      std::to_string(bytes.size() - kChunkHeaderSize - kChunkCrcSize)};
-  chunk.payload = bytes.data() + kChunkHeaderSize;
-  ByteReader crc(chunk.payload + chunk.chunk_length, 4);
-  chunk.chunk_crc = crc.u32();
-  if (verify && crc32c(0, bytes.data(), kChunkHeaderSize + chunk.chunk_length) != chunk.chunk_crc)
-    return Error{Status::kChecksumMismatch, chunk.payloadOffset() + chunk.chunk_length,
-                 chunk.chunk_type.str() + ".chunk_crc", "CRC-32C of the chunk does not match"};
-  if (chunk.chunk_type.critical() && !isKnownCriticalChunk(chunk.chunk_type))
-    return Error{Status::kUnknownCriticalChunk, offset, "chunk_type",
-                 "critical chunk '" + chunk.chunk_type.str() + "' is not known to this decoder"};
+  // A tile chunk follows the content header: the framer's order rules see one.
+  Container seen;
+  seen.chunks.push_back(ChunkView{kChunkGridHeader, 0, 0, 0, nullptr});
+  if (Error e = framer.wholeChunk(bytes.data(), &chunk, &seen); !e.ok()) return e;
   *out = chunk;
   return {};
 }
@@ -98,22 +89,20 @@ void forgetPayloads(DecodedGrid* grid) {
 }
 
 void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, std::vector<uint8_t>* samples) {
-  // An untiled grid decoded whole: its output position i stands for sample
-  // i * 2^K_a (spec 5.8.3), so the region's lattice is a sub-box of it.
+  // A grid decoded whole: its output position i stands for sample i * 2^K_a
+  // (spec 5.8.3), so the region's lattice is a sub-box of it.
   const size_t bytes = sampleSize(grid.header.sample_type);
   uint32_t first[3], count[3], shift[3];
+  regionOutputSize(region, levels, count);
+  const uint64_t step = uint64_t{1} << levels;
   for (int a = 0; a < 3; ++a) {
     // A tiled grid decoded whole is already on the 2^K lattice (spec 11.6).
     const int native = grid.header.coding == GridCoding::kTiled ? levels
                        : a < grid.header.num_dims && grid.header.coding == GridCoding::kWavelet ? grid.wavelet.levels[a]
                                                                                                 : 0;
     shift[a] = static_cast<uint32_t>(std::min<int>(levels, native));
-    const uint64_t step = uint64_t{1} << levels;
-    const uint64_t g0 = (uint64_t{region.lo[a]} + step - 1) / step * step;
-    count[a] = g0 < region.hi[a] ? static_cast<uint32_t>((region.hi[a] - g0 + step - 1) / step) : 0;
-    first[a] = static_cast<uint32_t>(g0);
+    first[a] = static_cast<uint32_t>((uint64_t{region.lo[a]} + step - 1) / step * step);
   }
-  const uint64_t step = uint64_t{1} << levels;
   samples->resize(uint64_t{count[0]} * count[1] * count[2] * bytes);
   const uint32_t* in = grid.output_size;
   uint8_t* dst = samples->data();
@@ -220,7 +209,7 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
     buffers[k].resize(extent);
     if (!source.read(offset, extent, buffers[k].data())) return ioError(offset, "a tile chunk");
     ChunkView chunk;
-    structural = frameChunk(buffers[k], offset, options.container.verify_checksums, &chunk);
+    structural = frameChunk(buffers[k], offset, options.container, &chunk);
     if (structural.ok()) structural = checkTileChunk(chunk, index, index.position[entry]);
     if (!structural.ok()) break;
     jobs[reads[k].second.first].chunks.push_back(chunk);

@@ -174,6 +174,7 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
   std::atomic<uint64_t> done{0};
   std::mutex progress_lock;
   auto encodeAll = [&](const WaveletEncodeOptions& o) -> Error {
+    results.resize(n_tiles);  // empty after a swap with the best so far
     parallelFor(n_tiles, tiled.threads, [&](uint64_t t) {
       results[t] = o.step > 0 && options.step == 0 ? encodeTileAtStep(tiles, t, samples, o)
                                                    : encodeTile(tiles, t, samples, o);
@@ -233,7 +234,7 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
       const bool meets = by_rate ? total_bits <= target_bits
                                  : (mse == 0 || 10 * std::log10(range * range / mse) >= options.psnr);
       if (meets) {
-        best = results;
+        best.swap(results);  // results is all written again by the next step tried
         (by_rate ? hi_log : lo_log) = mid;
         if (by_rate && total_bits >= 0.999 * target_bits) break;
       } else {
@@ -244,7 +245,7 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
       return invalid(by_rate ? "bits_per_sample" : "psnr",
                      by_rate ? "the rate is too low for even the coarsest approximation of every tile"
                              : "the PSNR target cannot be met");
-    results = std::move(best);
+    results.swap(best);
   } else {
     if (Error e = encodeAll(options); !e.ok()) return e;
     rep.iterations = 1;
