@@ -79,7 +79,7 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
     set(t2, pv, c, a, n[1], t, t1);
     replaceNeighbour(n[0], t, t1);
     replaceNeighbour(n[1], t, t2);
-    stack_ = {t, t1, t2};
+    stack_.push_back(t), stack_.push_back(t1), stack_.push_back(t2);
   } else {
     // On the edge b-c opposite a.
     const int i = on_edge;
@@ -90,7 +90,7 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
       set(t, pv, a, b, nc, kNone, t1);
       set(t1, pv, c, a, nb, t, kNone);
       replaceNeighbour(nb, t, t1);
-      stack_ = {t, t1};
+      stack_.push_back(t), stack_.push_back(t1);
     } else {
       int k = 0;
       while (tri_[u].n[k] != t) ++k;
@@ -104,10 +104,10 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
       set(u1, pv, b, d, mc, u, t);
       replaceNeighbour(nb, t, t1);
       replaceNeighbour(mc, u, u1);
-      stack_ = {t, t1, u, u1};
+      stack_.push_back(t), stack_.push_back(t1), stack_.push_back(u), stack_.push_back(u1);
     }
   }
-  touched->insert(touched->end(), stack_.begin(), stack_.end());
+  if (touched) touched->insert(touched->end(), stack_.begin(), stack_.end());
   legalize(touched);
   return pv;
 }
@@ -132,8 +132,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     replaceNeighbour(t1, t, u);
     stack_.push_back(t);
     stack_.push_back(u);
-    touched->push_back(t);
-    touched->push_back(u);
+    if (touched) touched->push_back(t), touched->push_back(u);
   }
 }
 

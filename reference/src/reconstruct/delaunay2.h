@@ -30,9 +30,22 @@ class Delaunay2 {
 
   // Adds p with `rank` (distinct from every other vertex's), which must lie
   // in triangle `t` (inside or on an edge) and not be a vertex. The slots of
-  // every triangle made or changed are appended to `touched` (possibly more
-  // than once). Returns the new vertex's number.
-  uint32_t insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint32_t>* touched);
+  // every triangle made or changed are appended to `touched`, when given
+  // (possibly more than once); they are the triangles around the new vertex,
+  // t among them. Returns the new vertex's number.
+  uint32_t insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint32_t>* touched = nullptr);
+
+  // The triangles around vertex v, one way and the other: the neighbour of
+  // t (which has corner v) across its edge from v to the next corner, or
+  // across the edge from the previous corner to v; kNone on the border.
+  uint32_t nextAround(uint32_t t, uint32_t v) const {
+    const auto& c = tri_[t].v;
+    return tri_[t].n[c[0] == v ? 2 : c[1] == v ? 0 : 1];
+  }
+  uint32_t previousAround(uint32_t t, uint32_t v) const {
+    const auto& c = tri_[t].v;
+    return tri_[t].n[c[0] == v ? 1 : c[1] == v ? 2 : 0];
+  }
 
   size_t vertexCount() const { return points_.size(); }
   size_t triangleCount() const { return tri_.size(); }

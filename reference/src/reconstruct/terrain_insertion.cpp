@@ -2,7 +2,7 @@
 #include "mrsv/terrain_insertion.h"
 
 #include <algorithm>
-#include <queue>
+#include <type_traits>
 
 #include "reconstruct/candidate_queue.h"
 #include "reconstruct/delaunay2.h"
@@ -30,12 +30,7 @@ struct TerrainInserter::State {
   Delaunay2 dt;
   std::vector<uint8_t> is_vertex;       // per sample
   std::vector<uint64_t> vertex_sample;  // per vertex
-  // Per vertex: its grid point and the last stage's value, side by side, as
-  // a triangle's scan reads all three.
-  struct VertexXYZ {
-    int32_t x, y, z;
-  };
-  std::vector<VertexXYZ> vertex;
+  std::vector<int32_t> vertex_value;    // per vertex: the last stage's value
   CandidateQueue queue;                 // triangles whose worst sample is beyond the bound
   std::vector<double> worst_error;      // per triangle, for maxError() only
   // This stage's bound: candidates within it are never inserted, so they are
@@ -43,20 +38,25 @@ struct TerrainInserter::State {
   __int128 bound_num = -1;
   int64_t bound_den = 1;
   bool narrow = false;                  // errors fit 64-bit arithmetic this stage
-  std::vector<uint32_t> touched;
+  // A scan's runs of samples, one per lattice row of the triangle.
+  struct Run {
+    int64_t lo, hi;
+  };
+  std::vector<Run> runs;
   // The current stage.
   const SampleField* field = nullptr;
   int64_t step = 1;  // 2^shift
   bool skip_border = false;
   double last_error = 0;
 
-  State(uint32_t x, uint32_t y) : nx(x), ny(y), dt(int32_t(x - 1), int32_t(y - 1)), is_vertex(uint64_t{x} * y) {
+  State(uint32_t x, uint32_t y)
+      : nx(x), ny(y), dt(int32_t(x - 1), int32_t(y - 1)), is_vertex(uint64_t{x} * y), runs(size_t{y} + 1) {
     for (uint32_t v = 0; v < 4; ++v) {
       const Point2 p = dt.point(v);
       vertex_sample.push_back(uint64_t(p.y) * nx + uint64_t(p.x));
       is_vertex[vertex_sample.back()] = 1;
+      vertex_value.push_back(0);
     }
-    for (uint32_t v = 0; v < 4; ++v) vertex.push_back({dt.point(v).x, dt.point(v).y, 0});
   }
 
   // The lattice coordinates of an axis of n samples within [lo, hi], in order:
@@ -109,12 +109,14 @@ struct TerrainInserter::State {
   // kUnit: the lattice step is 1 (the single stage and every last stage).
   template <class W, bool kUnit>
   void scanWith(uint32_t t) {
+    // The corners from the triangulation (its insertion has just read them)
+    // and their values from the field (beside the samples about to be read).
     const auto& tv = dt.triangle(t);
-    const VertexXYZ& va = vertex[tv[0]];
-    const VertexXYZ& vb = vertex[tv[1]];
-    const VertexXYZ& vc = vertex[tv[2]];
-    const Point2 a{va.x, va.y}, b{vb.x, vb.y}, c{vc.x, vc.y};
-    const int64_t za = va.z, zb = int64_t{vb.z} - za, zc = int64_t{vc.z} - za;
+    const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
+    const int32_t* values = field->values.data();
+    const int64_t nx64 = nx;
+    const int64_t za = values[a.y * nx64 + a.x];
+    const int64_t zb = values[b.y * nx64 + b.x] - za, zc = values[c.y * nx64 + c.x] - za;
     const int64_t den = orient2d(a, b, c);
     // Pick's theorem: a triangle of grid points with twice its area 1 holds
     // no grid point but its corners (on a lattice of step 1, every sample).
@@ -137,52 +139,18 @@ struct TerrainInserter::State {
     int64_t x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
     int64_t y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
     if (skip_border) {
-      x0 = std::max<int64_t>(x0, 1), x1 = std::min<int64_t>(x1, int64_t{nx} - 2);
+      x0 = std::max<int64_t>(x0, 1), x1 = std::min<int64_t>(x1, nx64 - 2);
       y0 = std::max<int64_t>(y0, 1), y1 = std::min<int64_t>(y1, int64_t{ny} - 2);
     }
     const int64_t first_y = kUnit ? y0 : (y0 + st - 1) & ~(st - 1);  // y0 >= 0
-    // The error numerator at (x, y) is (value - za) den - Q(x, y), with the
-    // interpolant's numerator Q = wb zb + wc zc linear: Q(x, y) = Q(x0, y) +
-    // qx (x - x0), and Q(x0, y) steps by a constant from lattice row to row.
-    // Every point of the bounding box has |wb|, |wc| <= 2 nx ny, so Q, its
-    // steps between box points and the error fit where refine() chose
-    // int64_t; a step is only taken as a constant when the box is at least
-    // a step wide (tall), so that it too is the difference of two box points.
-    const W qx = W(eb.ex) * zb + W(ec.ex) * zc;
-    const W qy = W(eb.ey) * zb + W(ec.ey) * zc;
-    const W dz = kUnit || st <= x1 - x0 ? qx * st : W(0);
-    const W dq_row = kUnit || st <= y1 - y0 ? qy * st : W(0);
-    W q_row = first_y <= y1 ? W(eb.at(x0, first_y)) * zb + W(ec.at(x0, first_y)) * zc : W(0);
-    W best_num = 0;
-    uint64_t best_sample = 0;
-    const int32_t* values = field->values.data();
-    const int64_t last = int64_t{nx} - 1;
-    // The last column and row are lattice points even when not multiples of step.
-    const bool last_apart = !kUnit && (last & (st - 1)) != 0;
-    // Samples come in increasing index order: on a tie the first stays.
-    const auto consider = [&](int64_t row, int64_t x, W e) {
-      if (e < 0) e = -e;
-      if (e > best_num) {
-        best_num = e;
-        best_sample = uint64_t(row + x);
-      }
-    };
-    // The lattice samples of row y in [lo, hi], Q(x0, y) being qr.
-    const auto visitRow = [&](int64_t y, int64_t lo, int64_t hi, W qr) {
-      const int64_t row = y * int64_t{nx};
-      const int32_t* v = values + row;
-      const int64_t first = kUnit ? lo : (lo + st - 1) & ~(st - 1);
-      if (first <= hi) {
-        W q = qr + qx * (first - x0);
-        for (int64_t x = first; x <= hi; x += st, q += dz) consider(row, x, W(v[x] - za) * den - q);
-      }
-      if (last_apart && lo <= last && last <= hi) consider(row, last, W(v[last] - za) * den - (qr + qx * (last - x0)));
-    };
-    // The rows from the top vertex to the middle one (by y) lie between the
-    // two edges from the top, the rest between the long edge (top to bottom)
-    // and the short one from the middle: two limits per row, one lower and
-    // one upper (a row's run between two boundary points of the triangle
-    // satisfies the third edge). Edge i is opposite corner i.
+
+    // First the rows' runs: the rows from the top vertex to the middle one
+    // (by y) lie between the two edges from the top, the rest between the
+    // long edge (top to bottom) and the short one from the middle: two
+    // limits per row, one lower and one upper (a row's run between two
+    // boundary points of the triangle satisfies the third edge). Edge i is
+    // opposite corner i. Apart from the sample loop below, this loop keeps
+    // few values live, so neither spills registers.
     int top = 0, mid = 1, bottom = 2;
     const int64_t ys[3] = {a.y, b.y, c.y};
     if (ys[mid] < ys[top]) std::swap(mid, top);
@@ -190,15 +158,14 @@ struct TerrainInserter::State {
     if (ys[mid] < ys[top]) std::swap(mid, top);
     const int64_t last_row = y1;
     RowLimit along, beside;  // the long edge, the current short edge
+    Run* run = runs.data();
     int64_t y = first_y;
-    const auto rows = [&](int64_t end) {
+    const auto limitRows = [&](int64_t end) {
       RowLimit& lower = along.upper ? beside : along;
       RowLimit& upper = along.upper ? along : beside;
-      for (; y <= end; y += st) {
-        const int64_t lo = std::max(x0, -lower.q), hi = std::min(x1, upper.q);
-        if (lo <= hi) visitRow(y, lo, hi, q_row);
+      for (; y <= end; y += st, ++run) {
+        run->lo = std::max(x0, -lower.q), run->hi = std::min(x1, upper.q);
         lower.next(), upper.next();
-        q_row += dq_row;
       }
     };
     if (y <= last_row) {
@@ -208,12 +175,61 @@ struct TerrainInserter::State {
       const int64_t split = ys[mid] == ys[bottom] ? last_row : std::min(last_row, ys[mid] - 1);
       if (y <= split) {
         beside.start(edges[bottom], y, st);
-        rows(split);
+        limitRows(split);
       }
       if (y <= last_row) {
         beside.start(edges[top], y, st);
-        rows(last_row);
+        limitRows(last_row);
       }
+    }
+    const Run* const runs_end = run;
+
+    // Then the samples. The error numerator at (x, y) is (value - za) den -
+    // Q(x, y), with the interpolant's numerator Q = wb zb + wc zc linear:
+    // Q(x, y) = Q(x0, y) + qx (x - x0), and Q(x0, y) steps by a constant from
+    // lattice row to row. Every point of the bounding box has |wb|, |wc| <=
+    // 2 nx ny, so Q, its steps between box points and the error fit where
+    // refine() chose int64_t; a step is only taken as a constant when the box
+    // is at least a step wide (tall), so that it too is the difference of two
+    // box points. The loop computes value den - (Q + za den) in U, unsigned
+    // (wrapping) arithmetic: za den alone may not fit, but the result does,
+    // and modulo 2^64 (2^128) it is exact.
+    using U = std::conditional_t<std::is_same_v<W, int64_t>, uint64_t, unsigned __int128>;
+    const U uden = U(W(den));
+    const U qx = U(W(eb.ex) * zb + W(ec.ex) * zc);
+    const U qy = U(W(eb.ey) * zb + W(ec.ey) * zc);
+    const U dz = kUnit || st <= x1 - x0 ? qx * U(st) : U(0);
+    const U dq_row = kUnit || st <= y1 - y0 ? qy * U(st) : U(0);
+    const U offset = U(W(za)) * uden;
+    const auto qAt = [&](int64_t x, int64_t row_y) {
+      return U(W(eb.at(x, row_y)) * zb + W(ec.at(x, row_y)) * zc) + offset;
+    };
+    W best_num = 0;
+    const int32_t* best = nullptr;
+    const int64_t last = nx64 - 1;
+    // The last column and row are lattice points even when not multiples of step.
+    const bool last_apart = !kUnit && (last & (st - 1)) != 0;
+    // Samples come in increasing index order: on a tie the first stays.
+    const auto consider = [&](const int32_t* v, U q) {
+      W e = W(U(W(*v)) * uden - q);
+      if (e < 0) e = -e;
+      if (e > best_num) best_num = e, best = v;
+    };
+    // The lattice samples of row y in [lo, hi], Q(x0, y) + za den being qr.
+    const auto visitRow = [&](const int32_t* v, int64_t lo, int64_t hi, U qr) {
+      const int64_t first = kUnit ? lo : (lo + st - 1) & ~(st - 1);
+      if (first <= hi) {
+        U q = qr + qx * U(first - x0);
+        for (const int32_t *p = v + first, *end = v + hi; p <= end; p += st, q += dz) consider(p, q);
+      }
+      if (last_apart && lo <= last && last <= hi) consider(v + last, qr + qx * U(last - x0));
+    };
+    if (run != runs.data()) {
+      U q_row = qAt(x0, first_y);
+      const int32_t* v = values + first_y * nx64;
+      const int64_t row_step = st * nx64;
+      for (const Run* r = runs.data(); r != runs_end; ++r, v += row_step, q_row += dq_row)
+        if (r->lo <= r->hi) visitRow(v, r->lo, r->hi, q_row);
     }
     // The last row, when not a multiple of step, by division.
     const int64_t last_y = int64_t{ny} - 1;
@@ -225,16 +241,22 @@ struct TerrainInserter::State {
         if (e.ex > 0) lo = std::max(lo, -floorDiv(n, e.ex));
         else hi = std::min(hi, floorDiv(n, -e.ex));
       }
-      if (lo <= hi) visitRow(last_y, lo, hi, W(eb.at(x0, last_y)) * zb + W(ec.at(x0, last_y)) * zc);
+      if (lo <= hi) visitRow(values + last_y * nx64, lo, hi, qAt(x0, last_y));
     }
-    Candidate best;
-    best.num = best_num;
-    best.den = den;
-    best.sample = best_sample;
-    const bool found = best_num > 0;
-    worst_error[t] = found ? double(best.num) / double(best.den) : 0.0;
-    if (found && (bound_num < 0 || best.num * bound_den > bound_num * best.den)) queue.set(t, best);
-    else queue.remove(t);
+    if (best_num > 0) {
+      Candidate found;
+      found.num = best_num;
+      found.den = den;
+      found.sample = uint64_t(best - values);
+      worst_error[t] = double(best_num) / double(den);
+      if (bound_num < 0 || found.num * bound_den > bound_num * found.den) {
+        queue.set(t, found);
+        return;
+      }
+    } else {
+      worst_error[t] = 0.0;
+    }
+    queue.remove(t);
   }
 
   // Every vertex's rank (spec 8.3) is its insertion number, corners 0 to 3:
@@ -242,15 +264,21 @@ struct TerrainInserter::State {
   void insertSample(uint64_t sample, uint32_t hint) {
     const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
     const uint32_t t = dt.locate(p, hint);
-    touched.clear();
-    dt.insert(p, dt.vertexCount(), t, &touched);
+    const uint32_t v = dt.insert(p, dt.vertexCount(), t);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
-    vertex.push_back({p.x, p.y, field->values[sample]});
+    vertex_value.push_back(field->values[sample]);
     worst_error.resize(dt.triangleCount(), 0.0);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    for (uint32_t s : touched) scan(s);
+    // The triangles made or changed are those around the new vertex (its
+    // star), each once: walk around it from t, which holds it.
+    uint32_t s = t;
+    do {
+      scan(s);
+      s = dt.nextAround(s, v);
+    } while (s != t && s != Delaunay2::kNone);
+    if (s == t) return;
+    // On a side of the rectangle: the rest of the star, the other way.
+    for (s = dt.previousAround(t, v); s != Delaunay2::kNone; s = dt.previousAround(s, v)) scan(s);
   }
 
   // spec 8.6: each side refined by 1-D insertion from its own samples.
@@ -278,12 +306,10 @@ struct TerrainInserter::State {
         if (!kept[k] || is_vertex[sample]) continue;
         const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
         hint = dt.locate(p, hint);
-        touched.clear();
-        dt.insert(p, dt.vertexCount(), hint, &touched);
-        hint = touched.front();
+        dt.insert(p, dt.vertexCount(), hint);  // hint holds p after it
         is_vertex[sample] = 1;
         vertex_sample.push_back(sample);
-        vertex.push_back({p.x, p.y, field->values[sample]});
+        vertex_value.push_back(field->values[sample]);
       }
     }
   }
@@ -310,7 +336,7 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   }
   s.field = &field;
   s.step = int64_t{1} << shift;
-  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex[v].z = field.values[s.vertex_sample[v]];
+  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex_value[v] = field.values[s.vertex_sample[v]];
   // spec 8.7: a stage on a lattice of step 2^shift > 1 stops at 2^(shift+1)
   // times the bound (decision D46: coarse stages, which see blurred samples,
   // then place few vertices the finer stages would not have chosen).
@@ -366,7 +392,7 @@ void TerrainInserter::mesh(GridMesh* out) const {
   for (uint32_t v = 0; v < s.dt.vertexCount(); ++v) {
     const Point2 p = s.dt.point(v);
     out->points[v] = {uint32_t(p.x), uint32_t(p.y), 0};
-    out->values[v] = s.vertex[v].z;
+    out->values[v] = s.vertex_value[v];
   }
   out->cells.resize(s.dt.triangleCount());
   for (uint32_t t = 0; t < s.dt.triangleCount(); ++t) {
