@@ -42,7 +42,9 @@ class CandidateQueue {
     grow(cell);
     cand_[cell] = c;
     const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample < kNoTie;
-    const Entry e{double(c.num) / double(c.den), cell, exact ? uint32_t(c.sample) : kNoTie};
+    // (An exact num converts from 64 bits, without the 128-bit library call.)
+    const double num = exact ? double(int64_t(c.num)) : double(c.num);
+    const Entry e{num / double(c.den), cell, exact ? uint32_t(c.sample) : kNoTie};
     if (pos_[cell] == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);

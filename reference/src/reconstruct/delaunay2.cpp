@@ -19,34 +19,6 @@ Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks)
   }
 }
 
-bool Delaunay2::conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
-  // The ranks are read only for cocircular points, where the perturbation decides.
-  const int s = incircle(points_[a], points_[b], points_[c], points_[d]);
-  if (s != 0) return s > 0;
-  const uint64_t rank[4] = {ranks_[a], ranks_[b], ranks_[c], ranks_[d]};
-  return cocircularConflict(points_[a], points_[b], points_[c], points_[d], rank);
-}
-
-uint32_t Delaunay2::addTriangle() {
-  tri_.push_back({{0, 0, 0}, {kNone, kNone, kNone}});
-  return static_cast<uint32_t>(tri_.size() - 1);
-}
-
-void Delaunay2::set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc) {
-  tri_[t].v = {a, b, c};
-  tri_[t].n = {na, nb, nc};
-}
-
-void Delaunay2::replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
-  if (t == kNone) return;
-  auto& n = tri_[t].n;
-  for (int i = 0; i < 3; ++i)
-    if (n[i] == from) {
-      n[i] = to;
-      return;
-    }
-}
-
 uint32_t Delaunay2::locate(Point2 p, uint32_t t) const {
   // The visibility walk ends in a Delaunay triangulation (no cycles).
   for (;;) {

@@ -56,13 +56,30 @@ class Delaunay2 {
   const std::array<uint32_t, 3>& neighbours(uint32_t t) const { return tri_[t].n; }
 
  private:
-  uint32_t addTriangle();
-  void set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc);
-  void replaceNeighbour(uint32_t t, uint32_t from, uint32_t to);
+  // Small and called at every split and flip: defined here to be inlined.
+  uint32_t addTriangle() {
+    tri_.push_back({{0, 0, 0}, {kNone, kNone, kNone}});
+    return static_cast<uint32_t>(tri_.size() - 1);
+  }
+  void set(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t na, uint32_t nb, uint32_t nc) {
+    tri_[t].v = {a, b, c};
+    tri_[t].n = {na, nb, nc};
+  }
+  void replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
+    if (t == kNone) return;
+    auto& n = tri_[t].n;
+    n[n[0] == from ? 0 : n[1] == from ? 1 : 2] = to;
+  }
   // Flips edges opposite the new vertex until all are locally Delaunay.
   void legalize(std::vector<uint32_t>* touched);
 
-  bool conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
+  bool conflict(uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
+    // The ranks are read only for cocircular points, where the perturbation decides.
+    const int s = incircle(points_[a], points_[b], points_[c], points_[d]);
+    if (s != 0) return s > 0;
+    const uint64_t rank[4] = {ranks_[a], ranks_[b], ranks_[c], ranks_[d]};
+    return cocircularConflict(points_[a], points_[b], points_[c], points_[d], rank);
+  }
 
   std::vector<Point2> points_;
   std::vector<uint64_t> ranks_;

@@ -98,11 +98,25 @@ struct TerrainInserter::State {
       const int64_t d = e.ey * step;
       dq = floorDiv(d, m), dr = d - dq * m;
     }
-    void next() {
-      q += dq, r += dr;
-      if (r >= m) r -= m, ++q;
-    }
   };
+
+  // Fills `count` runs, one per lattice row, between a lower and an upper
+  // limit, x in [x0, x1], and leaves both limits on the row after them. The
+  // limits are stepped in locals without branches (a carry of the remainder
+  // is as likely as not), so that the loop keeps them in registers.
+  static Run* fillRuns(Run* run, int64_t count, RowLimit& lower, RowLimit& upper, int64_t x0, int64_t x1) {
+    int64_t lq = lower.q, lr = lower.r, uq = upper.q, ur = upper.r;
+    const int64_t lm = lower.m, ldq = lower.dq, ldr = lower.dr;
+    const int64_t um = upper.m, udq = upper.dq, udr = upper.dr;
+    for (const Run* end = run + count; run != end; ++run) {
+      run->lo = std::max(x0, -lq), run->hi = std::min(x1, uq);
+      lq += ldq, lr += ldr, uq += udq, ur += udr;
+      const int64_t lc = -int64_t(lr >= lm), uc = -int64_t(ur >= um);  // all ones on a carry
+      lq -= lc, lr -= lm & lc, uq -= uc, ur -= um & uc;
+    }
+    lower.q = lq, lower.r = lr, upper.q = uq, upper.r = ur;
+    return run;
+  }
 
   // W holds |value - za| * den and the interpolant's numerator: int64_t when
   // the stage's value range allows (checked in refine()), else __int128.
@@ -160,13 +174,10 @@ struct TerrainInserter::State {
     RowLimit along, beside;  // the long edge, the current short edge
     Run* run = runs.data();
     int64_t y = first_y;
-    const auto limitRows = [&](int64_t end) {
-      RowLimit& lower = along.upper ? beside : along;
-      RowLimit& upper = along.upper ? along : beside;
-      for (; y <= end; y += st, ++run) {
-        run->lo = std::max(x0, -lower.q), run->hi = std::min(x1, upper.q);
-        lower.next(), upper.next();
-      }
+    const auto limitRows = [&](int64_t end) {  // the rows from y to end (y <= end)
+      const int64_t count = kUnit ? end - y + 1 : (end - y) / st + 1;
+      run = along.upper ? fillRuns(run, count, beside, along, x0, x1) : fillRuns(run, count, along, beside, x0, x1);
+      y += count * st;
     };
     if (y <= last_row) {
       along.start(edges[mid], y, st);
