@@ -150,8 +150,8 @@ struct TerrainInserter::State {
     };
     const Edge edges[3] = {edge(b, c), edge(c, a), edge(a, b)};
     const Edge &eb = edges[1], &ec = edges[2];
-    int64_t x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
-    int64_t y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+    int64_t x0 = std::min(std::min(a.x, b.x), c.x), x1 = std::max(std::max(a.x, b.x), c.x);
+    int64_t y0 = std::min(std::min(a.y, b.y), c.y), y1 = std::max(std::max(a.y, b.y), c.y);
     if (skip_border) {
       x0 = std::max<int64_t>(x0, 1), x1 = std::min<int64_t>(x1, nx64 - 2);
       y0 = std::max<int64_t>(y0, 1), y1 = std::min<int64_t>(y1, int64_t{ny} - 2);
@@ -216,6 +216,7 @@ struct TerrainInserter::State {
       return U(W(eb.at(x, row_y)) * zb + W(ec.at(x, row_y)) * zc) + offset;
     };
     W best_num = 0;
+    U twice_best = 0;
     const int32_t* best = nullptr;
     const int64_t last = nx64 - 1;
     // The last column and row are lattice points even when not multiples of step.
@@ -223,8 +224,13 @@ struct TerrainInserter::State {
     // Samples come in increasing index order: on a tie the first stays.
     const auto consider = [&](const int32_t* v, U q) {
       W e = W(U(W(*v)) * uden - q);
-      if (e < 0) e = -e;
-      if (e > best_num) best_num = e, best = v;
+      // |e| > best_num (>= 0) exactly when e + best_num, taken unsigned,
+      // exceeds 2 best_num (no overflow: both are below 2^62 where W is
+      // int64_t, refine()): one comparison, no absolute value.
+      if (U(e) + U(best_num) > twice_best) {
+        best_num = e < 0 ? -e : e, best = v;
+        twice_best = U(best_num) * 2;
+      }
     };
     // The lattice samples of row y in [lo, hi], Q(x0, y) + za den being qr.
     const auto visitRow = [&](const int32_t* v, int64_t lo, int64_t hi, U qr) {
