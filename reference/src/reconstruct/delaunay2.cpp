@@ -3,6 +3,10 @@
 
 namespace mrsv::reconstruct {
 
+namespace {
+constexpr int kNext[3] = {1, 2, 0};  // (i + 1) % 3 without a division
+}  // namespace
+
 Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks) {
   points_ = {{0, 0}, {max_x, 0}, {max_x, max_y}, {0, max_y}};
   ranks_ = {0, 1, 2, 3};
@@ -97,7 +101,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     if (!conflict(p, a1, a2, q)) continue;
     // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).
     const uint32_t t1 = tri_[t].n[1], t2 = tri_[t].n[2];                   // across a2-p, p-a1
-    const uint32_t u1 = tri_[u].n[(k + 1) % 3], u2 = tri_[u].n[(k + 2) % 3];  // across a1-q, q-a2
+    const uint32_t u1 = tri_[u].n[kNext[k]], u2 = tri_[u].n[kNext[kNext[k]]];  // across a1-q, q-a2
     set(t, p, a1, q, u1, u, t2);
     set(u, p, q, a2, u2, t1, t);
     replaceNeighbour(u1, u, t);

@@ -266,7 +266,13 @@ struct TerrainInserter::State {
       found.den = den;
       found.sample = uint64_t(best - values);
       worst_error[t] = double(best_num) / double(den);
-      if (bound_num < 0 || found.num * bound_den > bound_num * found.den) {
+      // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
+      // numerator fits 64 bits, as it does but for huge bounds and shifts.)
+      const bool beyond = bound_num < 0 ||
+                          (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
+                               ? __int128{int64_t(best_num)} * bound_den > __int128{int64_t(bound_num)} * den
+                               : found.num * bound_den > bound_num * found.den);
+      if (beyond) {
         queue.set(t, found);
         return;
       }
@@ -285,7 +291,8 @@ struct TerrainInserter::State {
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
     vertex_value.push_back(field->values[sample]);
-    worst_error.resize(dt.triangleCount(), 0.0);
+    // Grown by half at a time (the slots past the last triangle stay 0).
+    if (worst_error.size() < dt.triangleCount()) worst_error.resize(dt.triangleCount() * 3 / 2, 0.0);
     // The triangles made or changed are those around the new vertex (its
     // star), each once: walk around it from t, which holds it.
     uint32_t s = t;
