@@ -156,7 +156,21 @@ struct TerrainInserter::State {
       x0 = std::max<int64_t>(x0, 1), x1 = std::min<int64_t>(x1, nx64 - 2);
       y0 = std::max<int64_t>(y0, 1), y1 = std::min<int64_t>(y1, int64_t{ny} - 2);
     }
-    const int64_t first_y = kUnit ? y0 : (y0 + st - 1) & ~(st - 1);  // y0 >= 0
+    int top = 0, mid = 1, bottom = 2;  // the corners by y
+    const int64_t ys[3] = {a.y, b.y, c.y};
+    if (ys[mid] < ys[top]) std::swap(mid, top);
+    if (ys[bottom] < ys[mid]) std::swap(bottom, mid);
+    if (ys[mid] < ys[top]) std::swap(mid, top);
+    int64_t first_y = kUnit ? y0 : (y0 + st - 1) & ~(st - 1);  // y0 >= 0
+    int64_t last_row = y1;
+    // The row of the top corner holds no other point of the triangle when
+    // the two others lie below it, nor does the bottom corner's when they
+    // lie above: a corner is a vertex, never a candidate, so those rows are
+    // left out (most of a small triangle's rows are one or two samples long).
+    if (kUnit) {
+      if (first_y == ys[top] && ys[mid] > ys[top]) ++first_y;
+      if (last_row == ys[bottom] && ys[mid] < ys[bottom]) --last_row;
+    }
 
     // First the rows' runs: the rows from the top vertex to the middle one
     // (by y) lie between the two edges from the top, the rest between the
@@ -165,12 +179,6 @@ struct TerrainInserter::State {
     // boundary points of the triangle satisfies the third edge). Edge i is
     // opposite corner i. Apart from the sample loop below, this loop keeps
     // few values live, so neither spills registers.
-    int top = 0, mid = 1, bottom = 2;
-    const int64_t ys[3] = {a.y, b.y, c.y};
-    if (ys[mid] < ys[top]) std::swap(mid, top);
-    if (ys[bottom] < ys[mid]) std::swap(bottom, mid);
-    if (ys[mid] < ys[top]) std::swap(mid, top);
-    const int64_t last_row = y1;
     RowLimit along, beside;  // the long edge, the current short edge
     Run* run = runs.data();
     int64_t y = first_y;
