@@ -123,9 +123,16 @@ class CandidateQueue {
       const uint32_t first = kArity * i + 1;
       if (first >= n) break;
       uint32_t child = first;
-      const uint32_t end = first + kArity < n ? first + kArity : n;
-      for (uint32_t k = first + 1; k < end; ++k)
-        if (before(heap_[k], heap_[child])) child = k;
+      if (first + 3 < n) {
+        // Four children, as nearly every node has: two pairs, then their
+        // winners (the same three comparisons, two of them independent).
+        const uint32_t left = before(heap_[first + 1], heap_[first]) ? first + 1 : first;
+        const uint32_t right = before(heap_[first + 3], heap_[first + 2]) ? first + 3 : first + 2;
+        child = before(heap_[right], heap_[left]) ? right : left;
+      } else {
+        for (uint32_t k = first + 1; k < n; ++k)
+          if (before(heap_[k], heap_[child])) child = k;
+      }
       if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;

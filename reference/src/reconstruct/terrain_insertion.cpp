@@ -23,6 +23,13 @@ int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
+// a = q b + r with 0 <= r < b (b > 0): one division, no branch.
+void floorDivMod(int64_t a, int64_t b, int64_t* q, int64_t* r) {
+  const int64_t tq = a / b, tr = a % b;
+  const int64_t borrow = tr < 0;  // C++ division rounds toward zero
+  *q = tq - borrow, *r = tr + (b & -borrow);
+}
+
 }  // namespace
 
 struct TerrainInserter::State {
@@ -94,9 +101,8 @@ struct TerrainInserter::State {
       upper = e.ex < 0;
       m = upper ? -e.ex : e.ex;
       const int64_t n = e.ey * y + e.e0;
-      q = floorDiv(n, m), r = n - q * m;
-      const int64_t d = e.ey * step;
-      dq = floorDiv(d, m), dr = d - dq * m;
+      floorDivMod(n, m, &q, &r);
+      floorDivMod(e.ey * step, m, &dq, &dr);
     }
   };
 
