@@ -147,6 +147,18 @@ with tempfile.TemporaryDirectory() as work:
     check(worst <= 3 and all((x == -32768) == (y == -32768) for x, y in zip(orig, lossy)),
           f"--max-error 3: worst {worst} or voids moved")
 
+    # GDAL is opened only when a file needs it (D82): the tool itself does not
+    # link it, and without the module a GeoTIFF is refused with one line and
+    # no output while everything else still works.
+    dyn = subprocess.run(["readelf", "-d", MRSV], capture_output=True, text=True).stdout
+    check("libgdal" not in dyn, "mrsv links libgdal at start-up")
+    nomod = dict(os.environ, MRSV_GDAL_MODULE=os.path.join(work, "absent.so"))
+    r = run(MRSV, "encode", "--quiet", rainier, rb + "_nomod.mrsv", expect=3, env=nomod)
+    check("GDAL module" in r.stderr and "MRSV_GDAL_MODULE" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+          and not os.path.exists(rb + "_nomod.mrsv"), f"no module: {r.stderr.strip()[:200]}")
+    run(MRSV, "decode", "--quiet", rb + "_e3.mrsv", rb + "_nomod.raw", env=nomod)
+    check(os.path.getsize(rb + "_nomod.raw") == 1201 * 1201 * 2, "no module: a raw decode failed")
+
     # PixelIsPoint: GDAL's geotransform is still the pixel corner; the meta
     # origin is the tie point itself (what GDAL reports when told not to shift).
     point = os.path.join(work, "point.tif")
