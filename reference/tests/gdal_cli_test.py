@@ -243,6 +243,39 @@ with tempfile.TemporaryDirectory() as work:
         # size is GDAL's: the full extent over its size, not 4 pixels; D73.)
         run("gdal_translate", "-q", "-ovr", "1", stream, out + "_ovr1.tif", env=env)
         check(samples(out + "_ovr1.tif", work, "h") == samples(rb + "_l2.tif", work, "h"), "plugin: overview samples")
+        # A tiled grid (spec 11): one block per tile, each read by region
+        # decoding; windows, the whole raster and the overviews (the 2^K
+        # lattice of 11.6) equal what mrsv decode gives.
+        tiled = rb + "_t128.mrsv"
+        run(MRSV, "encode", "--quiet", "--tile", "128", "--max-error", "2", rainier, tiled)
+        t = info(tiled, env=env)
+        tband = (t.get("bands") or [{}])[0]
+        check(tband.get("block") == [128, 128], f"plugin, tiled: block {tband.get('block')}")
+        check(close(t.get("geoTransform", []), full["geoTransform"]), "plugin, tiled: geotransform")
+        tsizes = [o["size"] for o in tband.get("overviews", [])]
+        check(tsizes == [[601, 601], [301, 301], [151, 151], [76, 76]],  # down to one block
+              f"plugin, tiled: overviews {tsizes}")
+        run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", tiled, out + "_win.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", tiled, out + "_region.tif")
+        check(samples(out + "_win.tif", work, "h") == samples(out + "_region.tif", work, "h"),
+              "plugin, tiled: a window differs from mrsv decode --region")
+        check(close(info(out + "_win.tif")["geoTransform"], info(out + "_region.tif")["geoTransform"]),
+              "plugin, tiled: a window's geotransform differs from mrsv decode --region")
+        run("gdal_translate", "-q", tiled, out + "_tiled.tif", env=env)
+        run(MRSV, "decode", "--quiet", tiled, out + "_tiled_m.tif")
+        check(samples(out + "_tiled.tif", work, "h") == samples(out + "_tiled_m.tif", work, "h"),
+              "plugin, tiled: the whole raster differs from mrsv decode")
+        run("gdal_translate", "-q", "-ovr", "2", tiled, out + "_tovr.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--levels", "3", tiled, out + "_tl3.tif")
+        check(samples(out + "_tovr.tif", work, "h") == samples(out + "_tl3.tif", work, "h"),
+              "plugin, tiled: overview 3 differs from mrsv decode --levels 3")
+        with open(tiled, "rb") as f, open(tiled + ".bad.mrsv", "wb") as g:
+            b = bytearray(f.read())
+            b[-200] ^= 0xFF  # inside the last tile's chunks
+            g.write(b)
+        r = run("gdal_translate", "-q", tiled + ".bad.mrsv", out + "_bad.tif", expect=1, env=env)
+        check("bad.mrsv: tile" in r.stderr, f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
+
         # Not rasters: a 3-D grid, a damaged stream.
         r = run("gdalinfo", volume + ".mrsv", expect=1, env=env)
         check("3-D" in r.stderr, f"plugin: 3-D grid: {r.stderr.strip()[:200]}")
