@@ -276,6 +276,21 @@ with tempfile.TemporaryDirectory() as work:
         r = run("gdal_translate", "-q", tiled + ".bad.mrsv", out + "_bad.tif", expect=1, env=env)
         check("bad.mrsv: tile" in r.stderr, f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
 
+        # Opening reads the header part only: a stream damaged in its last
+        # chunk opens, its overviews read (their prefix is intact), and only
+        # a read of the full resolution fails, naming the file and the rule.
+        with open(stream, "rb") as f, open(stream + ".tail.mrsv", "wb") as g:
+            b = bytearray(f.read())
+            b[-20] ^= 0xFF
+            g.write(b)
+        tail = info(stream + ".tail.mrsv", env=env)
+        check(tail.get("size") == [1201, 1201], f"plugin: a stream damaged at its end does not open: {tail.get('size')}")
+        run("gdal_translate", "-q", "-ovr", "1", stream + ".tail.mrsv", out + "_tail_ovr.tif", env=env)
+        check(samples(out + "_tail_ovr.tif", work, "h") == samples(rb + "_l2.tif", work, "h"),
+              "plugin: an overview of a stream damaged at its end")
+        r = run("gdal_translate", "-q", stream + ".tail.mrsv", out + "_tail.tif", expect=1, env=env)
+        check("tail.mrsv" in r.stderr and "E113" in r.stderr, f"plugin: damaged end: {r.stderr.strip()[:200]}")
+
         # Not rasters: a 3-D grid, a damaged stream.
         r = run("gdalinfo", volume + ".mrsv", expect=1, env=env)
         check("3-D" in r.stderr, f"plugin: 3-D grid: {r.stderr.strip()[:200]}")

@@ -45,13 +45,27 @@ class VsiByteSource final : public mrsv::ByteSource {
   uint64_t size_;
 };
 
-// What every resolution of one file shares: its bytes (or, for a tiled
-// grid, its source) and its headers.
+// What every resolution of one file shares: where its bytes are read, the
+// prefix of them read so far, and its headers.
 struct Stream {
   std::string name;
-  std::vector<uint8_t> bytes;
-  std::unique_ptr<mrsv::ByteSource> source;  // tiled grids only
-  uint32_t tile_size[2] = {0, 0};            // tiled grids only
+  std::unique_ptr<mrsv::ByteSource> source;
+  std::vector<uint8_t> bytes;      // the first bytes.size() bytes of the file (not tiled grids)
+  bool tiled = false;
+  uint32_t tile_size[2] = {0, 0};  // tiled grids only
+
+  // Reads the file up to `end` (at most its size); false, with a GDAL error
+  // naming the file, on a read error.
+  bool ensure(uint64_t end) {
+    end = std::min<uint64_t>(end, source->size());
+    if (end <= bytes.size()) return true;
+    const size_t have = bytes.size();
+    bytes.resize(end);
+    if (source->read(have, end - have, bytes.data() + have)) return true;
+    bytes.resize(have);
+    CPLError(CE_Failure, CPLE_FileIO, "%s: cannot read it", name.c_str());
+    return false;
+  }
   mrsv::GridHeader header;
   mrsv::WaveletHeader wavelet;
   mrsv::Metadata metadata;
@@ -86,16 +100,16 @@ class MrsvDataset final : public GDALPamDataset {
   static std::unique_ptr<MrsvDataset> openTiled(const char* name, std::shared_ptr<Stream> stream);
   // The dataset of `stream` `reduce` levels above the finest, of `size`; its
   // decode reads the first `prefix` bytes.
-  MrsvDataset(std::shared_ptr<const Stream> stream, int reduce, const uint32_t size[2], size_t prefix);
+  MrsvDataset(std::shared_ptr<Stream> stream, int reduce, const uint32_t size[2], size_t prefix);
   MrsvDataset* overview(int i);
   // The samples of this resolution, decoded on first use; false (with a GDAL
   // error naming the file, once) when the stream cannot be decoded.
   bool decode();
   // Tiled grids: block (x, y), one tile of this resolution, by region decode.
   CPLErr readTile(int block_x, int block_y, void* image);
-  bool tiled() const { return stream_->source != nullptr; }
+  bool tiled() const { return stream_->tiled; }
 
-  std::shared_ptr<const Stream> stream_;
+  std::shared_ptr<Stream> stream_;
   int reduce_ = 0;
   size_t prefix_ = 0;
   bool decoded_ = false, failed_ = false;
@@ -157,7 +171,7 @@ int MrsvDataset::Identify(GDALOpenInfo* info) {
   return info->nHeaderBytes >= 12 && std::memcmp(info->pabyHeader, kSignature, 9) == 0;
 }
 
-MrsvDataset::MrsvDataset(std::shared_ptr<const Stream> stream, int reduce, const uint32_t size[2],
+MrsvDataset::MrsvDataset(std::shared_ptr<Stream> stream, int reduce, const uint32_t size[2],
                          size_t prefix)
     : stream_(std::move(stream)), reduce_(reduce), prefix_(prefix) {
   nRasterXSize = static_cast<int>(size[0]);
@@ -181,6 +195,12 @@ bool MrsvDataset::decode() {
   if (failed_) return false;  // said once already
   mrsv::DecodeOptions options;
   options.reduce_levels = reduce_;
+  // Safe: GDAL calls a dataset's blocks from one thread at a time, and the
+  // overviews are the same dataset's.
+  if (!stream_->ensure(prefix_)) {
+    failed_ = true;
+    return false;
+  }
   mrsv::DecodedGrid grid;
   mrsv::Error e = mrsv::decodeGrid(stream_->bytes.data(), prefix_, options, &grid);
   const char* problem = !e.ok() ? nullptr
@@ -237,6 +257,23 @@ CPLErr MrsvDataset::readTile(int block_x, int block_y, void* image) {
   return CE_None;
 }
 
+// A local file by pread; anything else (/vsicurl/, /vsizip/, ...) through
+// GDAL's virtual file layer. False with a GDAL error when it cannot be opened.
+bool openSource(const char* name, Stream* stream) {
+  std::string error;
+  stream->source = mrsv::openFileByteSource(name, &error);
+  if (stream->source) return true;
+  VSILFILE* f = VSIFOpenL(name, "rb");
+  VSIStatBufL st;
+  if (!f || VSIStatL(name, &st) != 0) {
+    if (f) VSIFCloseL(f);
+    CPLError(CE_Failure, CPLE_OpenFailed, "%s: cannot open it", name);
+    return false;
+  }
+  stream->source.reset(new VsiByteSource(f, static_cast<uint64_t>(st.st_size)));
+  return true;
+}
+
 GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   if (!Identify(info)) return nullptr;
   const char* name = info->pszFilename;
@@ -246,44 +283,48 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   }
   auto stream = std::make_shared<Stream>();
   stream->name = name;
+  if (!openSource(name, stream.get())) return nullptr;
   // GHDR's coding byte (file header 12 bytes, chunk header 8, then sample
   // type, dimensions, coding): 2 is a tiled grid, read by tile.
   if (info->nHeaderBytes >= 12 + 8 + 3 && std::memcmp(info->pabyHeader + 12, "GHDR", 4) == 0 &&
       info->pabyHeader[12 + 8 + 2] == static_cast<uint8_t>(mrsv::GridCoding::kTiled)) {
+    stream->tiled = true;
     std::unique_ptr<MrsvDataset> ds = openTiled(name, stream);
     if (!ds) return nullptr;
     ds->SetDescription(name);
     ds->TryLoadXML();
     return ds.release();
   }
-  GByte* data = nullptr;
-  vsi_l_offset size = 0;
-  if (!VSIIngestFile(nullptr, name, &data, &size, -1)) return nullptr;
-  stream->bytes.assign(data, data + size);
-  VSIFree(data);
-  const std::vector<uint8_t>& bytes = stream->bytes;
-  if (mrsv::isProgressiveMeshStream(bytes.data(), bytes.size()) ||
-      mrsv::isProgressiveTetStream(bytes.data(), bytes.size())) {
+  if (mrsv::isProgressiveMeshStream(info->pabyHeader, static_cast<size_t>(info->nHeaderBytes)) ||
+      mrsv::isProgressiveTetStream(info->pabyHeader, static_cast<size_t>(info->nHeaderBytes))) {
     CPLError(CE_Failure, CPLE_OpenFailed, "%s: a mesh stream, not a grid", name);
     return nullptr;
   }
-  // The framing and checksums of the whole file (cheap beside decoding);
-  // then the headers, meta chunk and no-data mask: the prefix before the
-  // first band or stored samples, decoded.
-  mrsv::Container container;
-  mrsv::Error e = mrsv::readContainer(bytes.data(), bytes.size(), mrsv::ContainerOptions{}, &container);
-  size_t samples_offset = bytes.size();
+  // The chunk headers, walked by offset, locate the bands (an overview reads
+  // the prefix that holds its bands) and the first samples chunk; the
+  // headers, meta chunk and no-data mask before it are read and decoded, with
+  // their checksums. The rest is read when samples are first wanted. A walk
+  // that meets a length past the end leaves the framing error to the decode
+  // of the whole file.
+  size_t samples_offset = 0;
   bool has_samples = false;
-  for (const mrsv::ChunkView& chunk : container.chunks) {
-    const bool band = chunk.chunk_type == mrsv::kChunkBand;
-    if (band) stream->band_offsets.push_back(chunk.offset);
-    if ((band || chunk.chunk_type == mrsv::kChunkGridStored) && !has_samples) {
-      samples_offset = chunk.offset;
+  const uint64_t size = stream->source->size();
+  for (uint64_t pos = mrsv::kFileHeaderSize; pos + mrsv::kChunkHeaderSize <= size;) {
+    uint8_t h[mrsv::kChunkHeaderSize];
+    if (!stream->source->read(pos, sizeof h, h)) break;
+    const uint64_t length = uint64_t{h[4]} | uint64_t{h[5]} << 8 | uint64_t{h[6]} << 16 | uint64_t{h[7]} << 24;
+    const bool band = std::memcmp(h, mrsv::kChunkBand.c, 4) == 0;
+    if (band) stream->band_offsets.push_back(pos);
+    if ((band || std::memcmp(h, mrsv::kChunkGridStored.c, 4) == 0) && !has_samples) {
+      samples_offset = static_cast<size_t>(pos);
       has_samples = true;
     }
+    pos += mrsv::kChunkHeaderSize + length + mrsv::kChunkCrcSize;
   }
+  const uint64_t head = has_samples ? samples_offset : size;
+  if (!stream->ensure(head)) return nullptr;
   mrsv::DecodedGrid grid;
-  if (e.ok()) e = mrsv::decodeGrid(bytes.data(), samples_offset, mrsv::DecodeOptions{}, &grid);
+  mrsv::Error e = mrsv::decodeGrid(stream->bytes.data(), stream->bytes.size(), mrsv::DecodeOptions{}, &grid);
   if (!e.ok()) {
     CPLError(CE_Failure, CPLE_OpenFailed, "%s: %s", name, e.describe().c_str());
     return nullptr;
@@ -299,7 +340,7 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   stream->wavelet = grid.wavelet;
   stream->metadata = std::move(grid.metadata);
   const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
-  std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, bytes.size()));
+  std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, static_cast<size_t>(size)));
   // One overview per wavelet level that reaches the decoded bands (a stream
   // coded by prediction alone, or a stored one, has none).
   if (h.coding == mrsv::GridCoding::kWavelet)
@@ -311,19 +352,6 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
 }
 
 std::unique_ptr<MrsvDataset> MrsvDataset::openTiled(const char* name, std::shared_ptr<Stream> stream) {
-  std::string error;
-  stream->source = mrsv::openFileByteSource(name, &error);
-  if (!stream->source) {
-    // Not a local file: GDAL's virtual file layer (/vsicurl/, /vsizip/, ...).
-    VSILFILE* f = VSIFOpenL(name, "rb");
-    VSIStatBufL st;
-    if (!f || VSIStatL(name, &st) != 0) {
-      if (f) VSIFCloseL(f);
-      CPLError(CE_Failure, CPLE_OpenFailed, "%s: cannot open it", name);
-      return nullptr;
-    }
-    stream->source.reset(new VsiByteSource(f, static_cast<uint64_t>(st.st_size)));
-  }
   mrsv::DecodedGrid probe;
   mrsv::GridRegion one;
   mrsv::Error e = mrsv::decodeGridRegion(*stream->source, one, mrsv::DecodeOptions{}, &probe);
@@ -378,7 +406,7 @@ MrsvDataset* MrsvDataset::overview(int i) {
     // The bands the synthesis uses; a decode of the stream up to the next
     // band gives the same samples (spec 5.8.3) without reading the finer ones.
     const std::vector<uint64_t>& bands = stream_->band_offsets;
-    const size_t prefix = r.bands_needed < bands.size() ? bands[r.bands_needed] : stream_->bytes.size();
+    const size_t prefix = r.bands_needed < bands.size() ? bands[r.bands_needed] : stream_->source->size();
     slot.reset(new MrsvDataset(stream_, i + 1, r.size, prefix));
   }
   return slot.get();
