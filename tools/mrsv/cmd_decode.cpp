@@ -25,14 +25,14 @@ namespace mrsv::cli {
 namespace {
 
 // The rows of a tiled grid's whole decode (DecodeOptions::tile_rows) written
-// to a raw OUT by a thread of their own, one row at a time, while the next
+// to a raw or NRRD OUT (after `head`, the NRRD header) by a thread of their own, one row at a time, while the next
 // row decodes: the write, one pass of the kernel over the whole output, no
 // longer waits for the last tile, and the memory is two rows of tiles. The
 // file appears under its name only when commit() succeeds.
 class RowWriter {
  public:
-  RowWriter(std::string path, bool big_endian, size_t sample_bytes)
-      : path_(std::move(path)), big_endian_(big_endian), sample_bytes_(sample_bytes) {}
+  RowWriter(std::string path, std::vector<uint8_t> head, bool big_endian, size_t sample_bytes)
+      : path_(std::move(path)), head_(std::move(head)), big_endian_(big_endian), sample_bytes_(sample_bytes) {}
   ~RowWriter() { stop(); }
 
   bool started() const { return started_; }
@@ -40,7 +40,7 @@ class RowWriter {
   // Hands over a row (taken from `samples`); false once a write has failed.
   bool push(std::vector<uint8_t>& samples) {
     if (!started_) {
-      if (!file_.open(path_, &error_)) return false;
+      if (!file_.open(path_, &error_) || !file_.write(head_.data(), head_.size())) return false;
       started_ = true;
       thread_ = std::thread([this] { run(); });
     }
@@ -95,6 +95,7 @@ class RowWriter {
   }
 
   std::string path_, error_;
+  std::vector<uint8_t> head_;
   bool big_endian_;
   size_t sample_bytes_;
   AtomicFileWriter file_;
@@ -339,13 +340,24 @@ int runDecode(int argc, char** argv) {
   DecodeOptions grid_options = options;
   if (!levels_out.empty()) grid_options.whole_array_synthesis = true;  // the same samples (grid.h)
   StreamDecoder decoder(grid_options, StreamContent::kGrid);
-  // A tiled grid decoded whole to raw: written a row of tiles at a time.
+  // A tiled grid decoded whole to raw or NRRD: written a row of tiles at a time.
   std::unique_ptr<RowWriter> rows;
-  if (gridFormatOf(out) == GridFormat::kRaw && !args.flag("canonical") && levels_out.empty()) {
+  const GridFormat out_format = gridFormatOf(out);
+  if ((out_format == GridFormat::kRaw || out_format == GridFormat::kNrrd) && !args.flag("canonical") &&
+      levels_out.empty()) {
     DecodeOptions row_options = grid_options;
     row_options.tile_rows = [&](int, uint32_t, uint32_t, std::vector<uint8_t>& samples) {
-      if (!rows)
-        rows = std::make_unique<RowWriter>(out, endian == Endian::kBig, sampleSize(decoder.grid().header.sample_type));
+      if (!rows) {
+        // The output's header (NRRD; none for raw) from the whole output's sizes (spec 11.6).
+        const GridHeader& h = decoder.grid().header;
+        const uint32_t step = 1u << levels;
+        const uint32_t size[3] = {(h.size_x + step - 1) / step, (h.size_y + step - 1) / step,
+                                  (h.size_z + step - 1) / step};
+        std::vector<uint8_t> head;
+        std::string why;
+        if (!encodeGridOutput(out, h, Metadata{}, size, {}, endian == Endian::kBig, &head, &why)) return false;
+        rows = std::make_unique<RowWriter>(out, std::move(head), endian == Endian::kBig, sampleSize(h.sample_type));
+      }
       return rows->push(samples);
     };
     decoder = StreamDecoder(row_options, StreamContent::kGrid);
