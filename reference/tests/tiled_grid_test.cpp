@@ -197,14 +197,20 @@ TEST(TiledGrid, NoSeamsAtTileBorders) {
   EXPECT_LT(ratio, 1.5);
 }
 
-TEST(TiledGrid, VolumeBricks) {
+// The demo's 64 x 64 x 32 crop of the Stanford CT head (demo/data/SOURCES.md).
+test::SharedGrid ctHeadCrop() {
   test::SharedGrid g;
   g.header.num_dims = 3;
   g.header.sample_type = SampleType::kUint8;
   g.header.size_x = g.header.size_y = 64;
   g.header.size_z = 32;
   g.samples = test::readFileOrFail(test::sourcePath("demo/data/ct_head_64x64x32_uint8.raw"));
-  ASSERT_EQ(g.samples.size(), 64u * 64 * 32);
+  EXPECT_EQ(g.samples.size(), 64u * 64 * 32);
+  return g;
+}
+
+TEST(TiledGrid, VolumeBricks) {
+  const test::SharedGrid g = ctHeadCrop();
   std::vector<uint8_t> stream = encodeTiled(g, 32, 32, 16, lossless(), 2);
   DecodedGrid d = decode(stream);
   EXPECT_EQ(d.tiles_total, 8u);
@@ -267,12 +273,7 @@ TEST(TiledGrid, RowsOfTilesGiveTheWholeDecode) {
     EXPECT_EQ(axis, 1);
   }
   // Bricks: rows along z.
-  test::SharedGrid v;
-  v.header.num_dims = 3;
-  v.header.sample_type = SampleType::kUint8;
-  v.header.size_x = v.header.size_y = 64;
-  v.header.size_z = 32;
-  v.samples = test::readFileOrFail(test::sourcePath("demo/data/ct_head_64x64x32_uint8.raw"));
+  const test::SharedGrid v = ctHeadCrop();
   const std::vector<uint8_t> bricks = encodeTiled(v, 32, 32, 16, lossless());
   EXPECT_EQ(decodeByRows(bricks, DecodeOptions{}, &e, &rows, &axis), v.samples);
   EXPECT_EQ(rows, 2);
