@@ -274,7 +274,8 @@ with tempfile.TemporaryDirectory() as work:
             b[-200] ^= 0xFF  # inside the last tile's chunks
             g.write(b)
         r = run("gdal_translate", "-q", tiled + ".bad.mrsv", out + "_bad.tif", expect=1, env=env)
-        check("bad.mrsv: tile" in r.stderr, f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
+        check("bad.mrsv: window 0,0 1201x1201" in r.stderr and "E113" in r.stderr,
+              f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
 
         # Opening reads the header part only: a stream damaged in its last
         # chunk opens, its overviews read (their prefix is intact), and only
