@@ -284,7 +284,13 @@ expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 0 "$crop" "$work/x.mr
 expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 8,8,8 "$crop" "$work/x.mrsv"; stderr_has "3 sizes"; one_line_stderr
 expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --coding stored "$crop" "$work/x.mrsv"; one_line_stderr
 expect 2 "$mrsv" encode --dims 128,128 --type int16 --out-of-core "$crop" "$work/x.mrsv"; stderr_has "needs --tile"; one_line_stderr
-expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --out-of-core --bits-per-sample 1 "$crop" "$work/x.mrsv"; one_line_stderr
+expect 2 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --out-of-core --roi box:1,1,9,9 "$crop" "$work/x.mrsv"; stderr_has "--roi"; one_line_stderr
+# A rate or PSNR target out of core: a pass over IN per step tried, the same stream.
+for target in "--bits-per-sample 1.5" "--psnr 55"; do
+  expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --tile 48,40 $target "$crop" "$work/tq.mrsv"
+  expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --tile 48,40 $target --out-of-core "$crop" "$work/tq2.mrsv"
+  if cmp -s "$work/tq.mrsv" "$work/tq2.mrsv"; then ok; else bad "out of core, $target: another stream"; fi
+done
 expect 1 "$mrsv" encode --dims 128,128 --type int16 --tile 64 --step 4 --roi box:1,1,9,9 "$crop" "$work/x.mrsv"; stderr_has "region of interest"; one_line_stderr
 expect 3 "$mrsv" encode --dims 129,128 --type int16 --tile 64 --out-of-core "$crop" "$work/x.mrsv"; stderr_has "bytes"; one_line_stderr
 expect 1 "$mrsv" decode --region 1,1,9,9 "$vectors/tiled_invalid/index_length_disagrees.mrsv" "$work/x.raw"; stderr_has "E208"; one_line_stderr

@@ -147,6 +147,18 @@ with tempfile.TemporaryDirectory() as work:
     check(worst <= 3 and all((x == -32768) == (y == -32768) for x, y in zip(orig, lossy)),
           f"--max-error 3: worst {worst} or voids moved")
 
+    # GDAL is opened only when a file needs it (D82): the tool itself does not
+    # link it, and without the module a GeoTIFF is refused with one line and
+    # no output while everything else still works.
+    dyn = subprocess.run(["readelf", "-d", MRSV], capture_output=True, text=True).stdout
+    check("libgdal" not in dyn, "mrsv links libgdal at start-up")
+    nomod = dict(os.environ, MRSV_GDAL_MODULE=os.path.join(work, "absent.so"))
+    r = run(MRSV, "encode", "--quiet", rainier, rb + "_nomod.mrsv", expect=3, env=nomod)
+    check("GDAL module" in r.stderr and "MRSV_GDAL_MODULE" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+          and not os.path.exists(rb + "_nomod.mrsv"), f"no module: {r.stderr.strip()[:200]}")
+    run(MRSV, "decode", "--quiet", rb + "_e3.mrsv", rb + "_nomod.raw", env=nomod)
+    check(os.path.getsize(rb + "_nomod.raw") == 1201 * 1201 * 2, "no module: a raw decode failed")
+
     # PixelIsPoint: GDAL's geotransform is still the pixel corner; the meta
     # origin is the tie point itself (what GDAL reports when told not to shift).
     point = os.path.join(work, "point.tif")
@@ -231,6 +243,54 @@ with tempfile.TemporaryDirectory() as work:
         # size is GDAL's: the full extent over its size, not 4 pixels; D73.)
         run("gdal_translate", "-q", "-ovr", "1", stream, out + "_ovr1.tif", env=env)
         check(samples(out + "_ovr1.tif", work, "h") == samples(rb + "_l2.tif", work, "h"), "plugin: overview samples")
+        # A tiled grid (spec 11): one block per tile, each read by region
+        # decoding; windows, the whole raster and the overviews (the 2^K
+        # lattice of 11.6) equal what mrsv decode gives.
+        tiled = rb + "_t128.mrsv"
+        run(MRSV, "encode", "--quiet", "--tile", "128", "--max-error", "2", rainier, tiled)
+        t = info(tiled, env=env)
+        tband = (t.get("bands") or [{}])[0]
+        check(tband.get("block") == [128, 128], f"plugin, tiled: block {tband.get('block')}")
+        check(close(t.get("geoTransform", []), full["geoTransform"]), "plugin, tiled: geotransform")
+        tsizes = [o["size"] for o in tband.get("overviews", [])]
+        check(tsizes == [[601, 601], [301, 301], [151, 151], [76, 76]],  # down to one block
+              f"plugin, tiled: overviews {tsizes}")
+        run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", tiled, out + "_win.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", tiled, out + "_region.tif")
+        check(samples(out + "_win.tif", work, "h") == samples(out + "_region.tif", work, "h"),
+              "plugin, tiled: a window differs from mrsv decode --region")
+        check(close(info(out + "_win.tif")["geoTransform"], info(out + "_region.tif")["geoTransform"]),
+              "plugin, tiled: a window's geotransform differs from mrsv decode --region")
+        run("gdal_translate", "-q", tiled, out + "_tiled.tif", env=env)
+        run(MRSV, "decode", "--quiet", tiled, out + "_tiled_m.tif")
+        check(samples(out + "_tiled.tif", work, "h") == samples(out + "_tiled_m.tif", work, "h"),
+              "plugin, tiled: the whole raster differs from mrsv decode")
+        run("gdal_translate", "-q", "-ovr", "2", tiled, out + "_tovr.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--levels", "3", tiled, out + "_tl3.tif")
+        check(samples(out + "_tovr.tif", work, "h") == samples(out + "_tl3.tif", work, "h"),
+              "plugin, tiled: overview 3 differs from mrsv decode --levels 3")
+        with open(tiled, "rb") as f, open(tiled + ".bad.mrsv", "wb") as g:
+            b = bytearray(f.read())
+            b[-200] ^= 0xFF  # inside the last tile's chunks
+            g.write(b)
+        r = run("gdal_translate", "-q", tiled + ".bad.mrsv", out + "_bad.tif", expect=1, env=env)
+        check("bad.mrsv: tile" in r.stderr, f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
+
+        # Opening reads the header part only: a stream damaged in its last
+        # chunk opens, its overviews read (their prefix is intact), and only
+        # a read of the full resolution fails, naming the file and the rule.
+        with open(stream, "rb") as f, open(stream + ".tail.mrsv", "wb") as g:
+            b = bytearray(f.read())
+            b[-20] ^= 0xFF
+            g.write(b)
+        tail = info(stream + ".tail.mrsv", env=env)
+        check(tail.get("size") == [1201, 1201], f"plugin: a stream damaged at its end does not open: {tail.get('size')}")
+        run("gdal_translate", "-q", "-ovr", "1", stream + ".tail.mrsv", out + "_tail_ovr.tif", env=env)
+        check(samples(out + "_tail_ovr.tif", work, "h") == samples(rb + "_l2.tif", work, "h"),
+              "plugin: an overview of a stream damaged at its end")
+        r = run("gdal_translate", "-q", stream + ".tail.mrsv", out + "_tail.tif", expect=1, env=env)
+        check("tail.mrsv" in r.stderr and "E113" in r.stderr, f"plugin: damaged end: {r.stderr.strip()[:200]}")
+
         # Not rasters: a 3-D grid, a damaged stream.
         r = run("gdalinfo", volume + ".mrsv", expect=1, env=env)
         check("3-D" in r.stderr, f"plugin: 3-D grid: {r.stderr.strip()[:200]}")

@@ -197,14 +197,20 @@ TEST(TiledGrid, NoSeamsAtTileBorders) {
   EXPECT_LT(ratio, 1.5);
 }
 
-TEST(TiledGrid, VolumeBricks) {
+// The demo's 64 x 64 x 32 crop of the Stanford CT head (demo/data/SOURCES.md).
+test::SharedGrid ctHeadCrop() {
   test::SharedGrid g;
   g.header.num_dims = 3;
   g.header.sample_type = SampleType::kUint8;
   g.header.size_x = g.header.size_y = 64;
   g.header.size_z = 32;
   g.samples = test::readFileOrFail(test::sourcePath("demo/data/ct_head_64x64x32_uint8.raw"));
-  ASSERT_EQ(g.samples.size(), 64u * 64 * 32);
+  EXPECT_EQ(g.samples.size(), 64u * 64 * 32);
+  return g;
+}
+
+TEST(TiledGrid, VolumeBricks) {
+  const test::SharedGrid g = ctHeadCrop();
   std::vector<uint8_t> stream = encodeTiled(g, 32, 32, 16, lossless(), 2);
   DecodedGrid d = decode(stream);
   EXPECT_EQ(d.tiles_total, 8u);
@@ -227,6 +233,72 @@ std::vector<uint8_t> edited(std::vector<uint8_t> stream, const ChunkView& chunk,
   const uint32_t crc = crc32c(0, stream.data() + chunk.offset, kChunkHeaderSize + chunk.chunk_length);
   for (int i = 0; i < 4; ++i) stream[chunk.endOffset() - 4 + i] = static_cast<uint8_t>(crc >> (8 * i));
   return stream;
+}
+
+// DecodeOptions::tile_rows: a whole decode handed over a row of tiles at a
+// time gives the whole decode's samples, in order, and its error.
+std::vector<uint8_t> decodeByRows(const std::vector<uint8_t>& stream, DecodeOptions options, Error* error,
+                                  int* rows, int* axis_seen) {
+  std::vector<uint8_t> joined;
+  *rows = 0;
+  uint32_t next = 0;
+  options.tile_rows = [&](int axis, uint32_t first, uint32_t count, std::vector<uint8_t>& samples) {
+    EXPECT_EQ(first, next);
+    next = first + count;
+    *axis_seen = axis;
+    ++*rows;
+    joined.insert(joined.end(), samples.begin(), samples.end());
+    return true;
+  };
+  DecodedGrid d;
+  *error = decodeGrid(stream.data(), stream.size(), options, &d);
+  EXPECT_TRUE(d.samples.empty());
+  return error->ok() && d.has_samples ? joined : std::vector<uint8_t>{};
+}
+
+TEST(TiledGrid, RowsOfTilesGiveTheWholeDecode) {
+  test::SharedGrid g = stHelens();
+  WaveletEncodeOptions o;
+  o.max_error = 3;
+  const std::vector<uint8_t> stream = encodeTiled(g, 64, 96, 1, o);
+  Error e;
+  int rows = 0, axis = -1;
+  for (int levels : {0, 2}) {
+    DecodeOptions options;
+    options.reduce_levels = levels;
+    options.threads = 2;
+    EXPECT_EQ(decodeByRows(stream, options, &e, &rows, &axis), decode(stream, options).samples) << levels;
+    EXPECT_TRUE(e.ok());
+    EXPECT_EQ(rows, 5);  // 460 / 96
+    EXPECT_EQ(axis, 1);
+  }
+  // Bricks: rows along z.
+  const test::SharedGrid v = ctHeadCrop();
+  const std::vector<uint8_t> bricks = encodeTiled(v, 32, 32, 16, lossless());
+  EXPECT_EQ(decodeByRows(bricks, DecodeOptions{}, &e, &rows, &axis), v.samples);
+  EXPECT_EQ(rows, 2);
+  EXPECT_EQ(axis, 2);
+  // Two damaged tiles: the error is the whole decode's, the first in file
+  // order, though its tile is in the last row (tile chunks come in rounds:
+  // every tile's WHDR, then every tile's next chunk...).
+  Container c;
+  ASSERT_TRUE(readContainer(stream.data(), stream.size(), ContainerOptions{}, &c).ok());
+  std::vector<size_t> whdr;
+  for (size_t i = 0; i < c.chunks.size(); ++i)
+    if (c.chunks[i].chunk_type == kChunkWaveletHeader) whdr.push_back(i);
+  ASSERT_EQ(whdr.size(), 25u);
+  std::vector<uint8_t> bad = edited(stream, c.chunks[whdr.back()], 0, 9);  // order 9: 204 in the last tile
+  const size_t late = whdr.back() + 1;  // tile 0's next chunk, after every WHDR
+  ASSERT_EQ(c.chunks[late].chunk_type, kChunkBand);
+  bad = edited(bad, c.chunks[late], 0, 0xEE);
+  DecodedGrid whole;
+  const Error expected = decodeGrid(bad.data(), bad.size(), DecodeOptions{}, &whole);
+  ASSERT_FALSE(expected.ok());
+  EXPECT_EQ(expected.offset, c.chunks[whdr.back()].payloadOffset());
+  EXPECT_TRUE(decodeByRows(bad, DecodeOptions{}, &e, &rows, &axis).empty());
+  EXPECT_EQ(e.status, expected.status);
+  EXPECT_EQ(e.offset, expected.offset);
+  EXPECT_EQ(e.message, expected.message);
 }
 
 TEST(TiledGrid, IndexAndOrderRulesGiveTheirCodes) {

@@ -5,8 +5,9 @@
 # uint8 (64 MiB). The limit is what a tiny encode needs plus half the grid's
 # raw size (the out-of-core encode needs about 18 MiB above a tiny one: a row
 # of tiles, the tiles in flight and the allocator's slack; tile_bench measures
-# the share on large grids); the in-memory encode and the whole decode must fail under
-# it (the limit bites), the out-of-core encode and the region decode must not,
+# the share on large grids); the in-memory encode and the canonical whole decode must fail under
+# it (the limit bites), the out-of-core encode, the region decode and the
+# whole decodes to raw and NRRD (written a row of tiles at a time) must not,
 # and the out-of-core stream must equal the in-memory one.
 set -uo pipefail
 mrsv=$1
@@ -45,9 +46,18 @@ cmp -s "$work/ooc.mrsv" "$work/mem.mrsv" || fail "the out-of-core stream differs
 
 (ulimit -v $limit; "$mrsv" decode --quiet --region 100,50,300,164,178,428 "$work/ooc.mrsv" "$work/region.raw") ||
   fail "the region decode failed under the limit"
-(ulimit -v $limit; "$mrsv" decode --quiet "$work/ooc.mrsv" "$work/whole.raw") 2>/dev/null &&
-  fail "the whole decode ran under the limit: the limit does not bite"
-"$mrsv" decode --quiet "$work/ooc.mrsv" "$work/whole.raw" || fail "the whole decode failed"
+# A whole decode to the canonical output gathers the grid in memory: the
+# limit bites. To raw and NRRD, the grid is written a row of tiles at a time
+# (DecodeOptions::tile_rows): they run under the limit, with the same samples.
+(ulimit -v $limit; "$mrsv" decode --quiet --canonical "$work/ooc.mrsv" "$work/whole.canon") 2>/dev/null &&
+  fail "the whole decode to the canonical output ran under the limit: the limit does not bite"
+"$mrsv" decode --quiet --canonical "$work/ooc.mrsv" "$work/whole.canon" || fail "the canonical whole decode failed"
+(ulimit -v $limit; "$mrsv" decode --quiet "$work/ooc.mrsv" "$work/whole.raw") ||
+  fail "the whole decode to raw, a row of tiles at a time, failed under the limit"
+(ulimit -v $limit; "$mrsv" decode --quiet "$work/ooc.mrsv" "$work/whole.nrrd") ||
+  fail "the whole decode to NRRD, a row of tiles at a time, failed under the limit"
+tail -c 67108864 "$work/whole.canon" | cmp -s - "$work/whole.raw" || fail "the decodes to raw and canonical differ"
+tail -c 67108864 "$work/whole.nrrd" | cmp -s - "$work/whole.raw" || fail "the decodes to raw and NRRD differ"
 # The region equals the same box of the whole decode.
 for ((z = 300; z < 428; z += 37)); do
   for ((y = 50; y < 178; y += 41)); do

@@ -5,6 +5,10 @@
 // when its samples are first read. The overviews are the wavelet levels:
 // overview k is the stream decoded k levels above the finest (spec 5.8.3),
 // from the prefix of the stream that holds the bands it needs.
+// A tiled grid (spec 11) is not read whole: opening reads its header part,
+// and each GDAL block is one tile, decoded by region decoding (11.5) from
+// the byte ranges of that tile only; overview k is the grid reduced by k
+// levels (11.6), one block per tile.
 #include "mrsv_driver.h"
 
 #include <gdal_pam.h>
@@ -20,13 +24,48 @@
 #include "mrsv/grid_formats.h"
 #include "mrsv/progressive_mesh.h"
 #include "mrsv/progressive_tet_mesh.h"
+#include "mrsv/tiled_grid.h"
 
 namespace {
 
-// What every resolution of one file shares: its bytes and its headers.
+// A file read through GDAL's virtual file layer, by offset (tiled grids).
+class VsiByteSource final : public mrsv::ByteSource {
+ public:
+  VsiByteSource(VSILFILE* file, uint64_t size) : file_(file), size_(size) {}
+  ~VsiByteSource() override { VSIFCloseL(file_); }
+  uint64_t size() const override { return size_; }
+
+ protected:
+  bool readAt(uint64_t offset, size_t n, uint8_t* out) override {
+    return VSIFSeekL(file_, offset, SEEK_SET) == 0 && VSIFReadL(out, 1, n, file_) == n;
+  }
+
+ private:
+  VSILFILE* file_;
+  uint64_t size_;
+};
+
+// What every resolution of one file shares: where its bytes are read, the
+// prefix of them read so far, and its headers.
 struct Stream {
   std::string name;
-  std::vector<uint8_t> bytes;
+  std::unique_ptr<mrsv::ByteSource> source;
+  std::vector<uint8_t> bytes;      // the first bytes.size() bytes of the file (not tiled grids)
+  bool tiled = false;
+  uint32_t tile_size[2] = {0, 0};  // tiled grids only
+
+  // Reads the file up to `end` (at most its size); false, with a GDAL error
+  // naming the file, on a read error.
+  bool ensure(uint64_t end) {
+    end = std::min<uint64_t>(end, source->size());
+    if (end <= bytes.size()) return true;
+    const size_t have = bytes.size();
+    bytes.resize(end);
+    if (source->read(have, end - have, bytes.data() + have)) return true;
+    bytes.resize(have);
+    CPLError(CE_Failure, CPLE_FileIO, "%s: cannot read it", name.c_str());
+    return false;
+  }
   mrsv::GridHeader header;
   mrsv::WaveletHeader wavelet;
   mrsv::Metadata metadata;
@@ -55,15 +94,22 @@ class MrsvDataset final : public GDALPamDataset {
 
  private:
   friend class MrsvRasterBand;
+  // Opens a tiled grid by its header part only (spec 11.5): the headers, meta
+  // chunk and tile index, through a one-sample region decode that also checks
+  // them. Null, with a GDAL error, when the stream is broken.
+  static std::unique_ptr<MrsvDataset> openTiled(const char* name, std::shared_ptr<Stream> stream);
   // The dataset of `stream` `reduce` levels above the finest, of `size`; its
   // decode reads the first `prefix` bytes.
-  MrsvDataset(std::shared_ptr<const Stream> stream, int reduce, const uint32_t size[2], size_t prefix);
+  MrsvDataset(std::shared_ptr<Stream> stream, int reduce, const uint32_t size[2], size_t prefix);
   MrsvDataset* overview(int i);
   // The samples of this resolution, decoded on first use; false (with a GDAL
   // error naming the file, once) when the stream cannot be decoded.
   bool decode();
+  // Tiled grids: block (x, y), one tile of this resolution, by region decode.
+  CPLErr readTile(int block_x, int block_y, void* image);
+  bool tiled() const { return stream_->tiled; }
 
-  std::shared_ptr<const Stream> stream_;
+  std::shared_ptr<Stream> stream_;
   int reduce_ = 0;
   size_t prefix_ = 0;
   bool decoded_ = false, failed_ = false;
@@ -78,13 +124,20 @@ MrsvRasterBand::MrsvRasterBand(MrsvDataset* ds, GDALDataType type) {
   poDS = ds;
   nBand = 1;
   eDataType = type;
+  if (ds->tiled()) {
+    // A block per tile: tile_size / 2^K positions of the reduced lattice.
+    nBlockXSize = static_cast<int>(std::max<uint32_t>(1, ds->stream_->tile_size[0] >> ds->reduce_));
+    nBlockYSize = static_cast<int>(std::max<uint32_t>(1, ds->stream_->tile_size[1] >> ds->reduce_));
+    return;
+  }
   // Whole rows: the samples are in memory once decoded, row after row.
   nBlockXSize = ds->GetRasterXSize();
   nBlockYSize = 1;
 }
 
-CPLErr MrsvRasterBand::IReadBlock(int, int block_y, void* image) {
+CPLErr MrsvRasterBand::IReadBlock(int block_x, int block_y, void* image) {
   auto* ds = static_cast<MrsvDataset*>(poDS);
+  if (ds->tiled()) return ds->readTile(block_x, block_y, image);
   if (!ds->decode()) return CE_Failure;
   const size_t bytes = GDALGetDataTypeSizeBytes(eDataType);
   const size_t row = static_cast<size_t>(nBlockXSize) * bytes;
@@ -118,7 +171,7 @@ int MrsvDataset::Identify(GDALOpenInfo* info) {
   return info->nHeaderBytes >= 12 && std::memcmp(info->pabyHeader, kSignature, 9) == 0;
 }
 
-MrsvDataset::MrsvDataset(std::shared_ptr<const Stream> stream, int reduce, const uint32_t size[2],
+MrsvDataset::MrsvDataset(std::shared_ptr<Stream> stream, int reduce, const uint32_t size[2],
                          size_t prefix)
     : stream_(std::move(stream)), reduce_(reduce), prefix_(prefix) {
   nRasterXSize = static_cast<int>(size[0]);
@@ -142,6 +195,12 @@ bool MrsvDataset::decode() {
   if (failed_) return false;  // said once already
   mrsv::DecodeOptions options;
   options.reduce_levels = reduce_;
+  // Safe: GDAL calls a dataset's blocks from one thread at a time, and the
+  // overviews are the same dataset's.
+  if (!stream_->ensure(prefix_)) {
+    failed_ = true;
+    return false;
+  }
   mrsv::DecodedGrid grid;
   mrsv::Error e = mrsv::decodeGrid(stream_->bytes.data(), prefix_, options, &grid);
   const char* problem = !e.ok() ? nullptr
@@ -161,6 +220,60 @@ bool MrsvDataset::decode() {
   return true;
 }
 
+CPLErr MrsvDataset::readTile(int block_x, int block_y, void* image) {
+  if (failed_) return CE_Failure;  // said once already
+  const mrsv::GridHeader& h = stream_->header;
+  const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
+  int bx = 0, by = 0;
+  GetRasterBand(1)->GetBlockSize(&bx, &by);
+  // The tile's box in full-resolution samples; the reduced decode gives the
+  // lattice positions inside it (spec 11.6), at most a block's worth.
+  mrsv::GridRegion region;
+  const uint32_t index[2] = {static_cast<uint32_t>(block_x), static_cast<uint32_t>(block_y)};
+  for (int a = 0; a < 2; ++a) {
+    region.lo[a] = index[a] * stream_->tile_size[a];
+    region.hi[a] = std::min<uint32_t>(full[a], region.lo[a] + stream_->tile_size[a]);
+  }
+  mrsv::DecodeOptions options;
+  options.reduce_levels = reduce_;
+  mrsv::DecodedGrid grid;
+  mrsv::Error e = mrsv::decodeGridRegion(*stream_->source, region, options, &grid);
+  const char* problem = !e.ok() ? nullptr : !grid.has_samples ? "the stream ends before this tile's samples" : nullptr;
+  if (!e.ok() || problem) {
+    CPLError(CE_Failure, CPLE_AppDefined, "%s: tile %d,%d: %s", stream_->name.c_str(), block_x, block_y,
+             problem ? problem : e.describe().c_str());
+    failed_ = true;
+    return CE_Failure;
+  }
+  const size_t bytes = mrsv::sampleSize(h.sample_type);
+  const size_t row_out = static_cast<size_t>(bx) * bytes, row_in = size_t{grid.output_size[0]} * bytes;
+  auto* out = static_cast<uint8_t*>(image);
+  std::memset(out, 0, row_out * static_cast<size_t>(by));  // the part of an edge block outside the raster
+  for (uint32_t y = 0; y < grid.output_size[1] && y < static_cast<uint32_t>(by); ++y)
+    std::memcpy(out + y * row_out, grid.samples.data() + y * row_in, std::min(row_in, row_out));
+#if !CPL_IS_LSB
+  GDALSwapWords(image, static_cast<int>(bytes), bx * by, static_cast<int>(bytes));  // stored little-endian
+#endif
+  return CE_None;
+}
+
+// A local file by pread; anything else (/vsicurl/, /vsizip/, ...) through
+// GDAL's virtual file layer. False with a GDAL error when it cannot be opened.
+bool openSource(const char* name, Stream* stream) {
+  std::string error;
+  stream->source = mrsv::openFileByteSource(name, &error);
+  if (stream->source) return true;
+  VSILFILE* f = VSIFOpenL(name, "rb");
+  VSIStatBufL st;
+  if (!f || VSIStatL(name, &st) != 0) {
+    if (f) VSIFCloseL(f);
+    CPLError(CE_Failure, CPLE_OpenFailed, "%s: cannot open it", name);
+    return false;
+  }
+  stream->source.reset(new VsiByteSource(f, static_cast<uint64_t>(st.st_size)));
+  return true;
+}
+
 GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   if (!Identify(info)) return nullptr;
   const char* name = info->pszFilename;
@@ -170,34 +283,48 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   }
   auto stream = std::make_shared<Stream>();
   stream->name = name;
-  GByte* data = nullptr;
-  vsi_l_offset size = 0;
-  if (!VSIIngestFile(nullptr, name, &data, &size, -1)) return nullptr;
-  stream->bytes.assign(data, data + size);
-  VSIFree(data);
-  const std::vector<uint8_t>& bytes = stream->bytes;
-  if (mrsv::isProgressiveMeshStream(bytes.data(), bytes.size()) ||
-      mrsv::isProgressiveTetStream(bytes.data(), bytes.size())) {
+  if (!openSource(name, stream.get())) return nullptr;
+  // GHDR's coding byte (file header 12 bytes, chunk header 8, then sample
+  // type, dimensions, coding): 2 is a tiled grid, read by tile.
+  if (info->nHeaderBytes >= 12 + 8 + 3 && std::memcmp(info->pabyHeader + 12, "GHDR", 4) == 0 &&
+      info->pabyHeader[12 + 8 + 2] == static_cast<uint8_t>(mrsv::GridCoding::kTiled)) {
+    stream->tiled = true;
+    std::unique_ptr<MrsvDataset> ds = openTiled(name, stream);
+    if (!ds) return nullptr;
+    ds->SetDescription(name);
+    ds->TryLoadXML();
+    return ds.release();
+  }
+  if (mrsv::isProgressiveMeshStream(info->pabyHeader, static_cast<size_t>(info->nHeaderBytes)) ||
+      mrsv::isProgressiveTetStream(info->pabyHeader, static_cast<size_t>(info->nHeaderBytes))) {
     CPLError(CE_Failure, CPLE_OpenFailed, "%s: a mesh stream, not a grid", name);
     return nullptr;
   }
-  // The framing and checksums of the whole file (cheap beside decoding);
-  // then the headers, meta chunk and no-data mask: the prefix before the
-  // first band or stored samples, decoded.
-  mrsv::Container container;
-  mrsv::Error e = mrsv::readContainer(bytes.data(), bytes.size(), mrsv::ContainerOptions{}, &container);
-  size_t samples_offset = bytes.size();
+  // The chunk headers, walked by offset, locate the bands (an overview reads
+  // the prefix that holds its bands) and the first samples chunk; the
+  // headers, meta chunk and no-data mask before it are read and decoded, with
+  // their checksums. The rest is read when samples are first wanted. A walk
+  // that meets a length past the end leaves the framing error to the decode
+  // of the whole file.
+  size_t samples_offset = 0;
   bool has_samples = false;
-  for (const mrsv::ChunkView& chunk : container.chunks) {
-    const bool band = chunk.chunk_type == mrsv::kChunkBand;
-    if (band) stream->band_offsets.push_back(chunk.offset);
-    if ((band || chunk.chunk_type == mrsv::kChunkGridStored) && !has_samples) {
-      samples_offset = chunk.offset;
+  const uint64_t size = stream->source->size();
+  for (uint64_t pos = mrsv::kFileHeaderSize; pos + mrsv::kChunkHeaderSize <= size;) {
+    uint8_t h[mrsv::kChunkHeaderSize];
+    if (!stream->source->read(pos, sizeof h, h)) break;
+    const uint64_t length = uint64_t{h[4]} | uint64_t{h[5]} << 8 | uint64_t{h[6]} << 16 | uint64_t{h[7]} << 24;
+    const bool band = std::memcmp(h, mrsv::kChunkBand.c, 4) == 0;
+    if (band) stream->band_offsets.push_back(pos);
+    if ((band || std::memcmp(h, mrsv::kChunkGridStored.c, 4) == 0) && !has_samples) {
+      samples_offset = static_cast<size_t>(pos);
       has_samples = true;
     }
+    pos += mrsv::kChunkHeaderSize + length + mrsv::kChunkCrcSize;
   }
+  const uint64_t head = has_samples ? samples_offset : size;
+  if (!stream->ensure(head)) return nullptr;
   mrsv::DecodedGrid grid;
-  if (e.ok()) e = mrsv::decodeGrid(bytes.data(), samples_offset, mrsv::DecodeOptions{}, &grid);
+  mrsv::Error e = mrsv::decodeGrid(stream->bytes.data(), stream->bytes.size(), mrsv::DecodeOptions{}, &grid);
   if (!e.ok()) {
     CPLError(CE_Failure, CPLE_OpenFailed, "%s: %s", name, e.describe().c_str());
     return nullptr;
@@ -213,7 +340,7 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   stream->wavelet = grid.wavelet;
   stream->metadata = std::move(grid.metadata);
   const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
-  std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, bytes.size()));
+  std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, static_cast<size_t>(size)));
   // One overview per wavelet level that reaches the decoded bands (a stream
   // coded by prediction alone, or a stored one, has none).
   if (h.coding == mrsv::GridCoding::kWavelet)
@@ -224,16 +351,62 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   return ds.release();
 }
 
+std::unique_ptr<MrsvDataset> MrsvDataset::openTiled(const char* name, std::shared_ptr<Stream> stream) {
+  mrsv::DecodedGrid probe;
+  mrsv::GridRegion one;
+  mrsv::Error e = mrsv::decodeGridRegion(*stream->source, one, mrsv::DecodeOptions{}, &probe);
+  const mrsv::GridHeader& h = probe.header;
+  const char* problem = !e.ok() ? nullptr
+                        : h.num_dims > 2 ? "a 3-D grid is not a raster; decode it with mrsv decode"
+                        : !probe.has_samples ? "the stream ends before its sample data"
+                                             : nullptr;
+  if (!e.ok() || problem) {
+    CPLError(CE_Failure, CPLE_OpenFailed, "%s: %s", name, problem ? problem : e.describe().c_str());
+    return nullptr;
+  }
+  stream->header = h;
+  stream->metadata = std::move(probe.metadata);
+  // Reduced by K, every axis steps by 2^K (spec 11.6): the spacing's scale.
+  std::fill(stream->wavelet.levels, stream->wavelet.levels + 3, uint8_t{16});
+  stream->tile_size[0] = probe.tile_size[0];
+  stream->tile_size[1] = h.num_dims > 1 ? probe.tile_size[1] : 1;
+  const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
+  std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, 0));
+  // Overview k: the 2^k lattice (spec 11.6), which needs tile sizes that are
+  // multiples of 2^k along the axes with more than one tile; down to one
+  // block, and no further than 16 levels.
+  int count = 0;
+  for (int k = 1; k <= 16; ++k) {
+    bool fits = (full[0] >> k) >= 1 && (full[1] >> k) >= 1 && (full[0] > 1 || full[1] > 1);
+    for (int a = 0; a < 2; ++a)
+      if (full[a] > stream->tile_size[a] && stream->tile_size[a] % (1u << k) != 0) fits = false;
+    if (!fits) break;
+    count = k;
+    if ((full[0] >> k) <= stream->tile_size[0] && (full[1] >> k) <= stream->tile_size[1]) break;
+  }
+  ds->overview_count_ = count;
+  ds->overviews_.resize(static_cast<size_t>(count));
+  return ds;
+}
+
 MrsvDataset* MrsvDataset::overview(int i) {
   if (i < 0 || i >= overview_count_) return nullptr;
   auto& slot = overviews_[static_cast<size_t>(i)];
+  if (!slot && tiled()) {
+    // Every 2^(i+1)-th sample from sample 0 along each axis (spec 11.6).
+    const mrsv::GridHeader& h = stream_->header;
+    const uint32_t step = 1u << (i + 1);
+    const uint32_t size[2] = {(h.size_x + step - 1) / step, h.num_dims > 1 ? (h.size_y + step - 1) / step : 1};
+    slot.reset(new MrsvDataset(stream_, i + 1, size, 0));
+    return slot.get();
+  }
   if (!slot) {
     mrsv::ReducedResolution r;
     if (!mrsv::reducedResolution(stream_->header, stream_->wavelet, i + 1, &r)) return nullptr;
     // The bands the synthesis uses; a decode of the stream up to the next
     // band gives the same samples (spec 5.8.3) without reading the finer ones.
     const std::vector<uint64_t>& bands = stream_->band_offsets;
-    const size_t prefix = r.bands_needed < bands.size() ? bands[r.bands_needed] : stream_->bytes.size();
+    const size_t prefix = r.bands_needed < bands.size() ? bands[r.bands_needed] : stream_->source->size();
     slot.reset(new MrsvDataset(stream_, i + 1, r.size, prefix));
   }
   return slot.get();

@@ -1,8 +1,10 @@
 // mrsv decode: an MRSV file (or a prefix of one) to raw samples.
 #include <algorithm>
 #include <climits>
+#include <condition_variable>
 #include <cstdio>
 #include <functional>
+#include <mutex>
 #include <thread>
 #include <utility>
 
@@ -21,6 +23,88 @@
 
 namespace mrsv::cli {
 namespace {
+
+// The rows of a tiled grid's whole decode (DecodeOptions::tile_rows) written
+// to a raw or NRRD OUT (after `head`, the NRRD header) by a thread of their own, one row at a time, while the next
+// row decodes: the write, one pass of the kernel over the whole output, no
+// longer waits for the last tile, and the memory is two rows of tiles. The
+// file appears under its name only when commit() succeeds.
+class RowWriter {
+ public:
+  RowWriter(std::string path, std::vector<uint8_t> head, bool big_endian, size_t sample_bytes)
+      : path_(std::move(path)), head_(std::move(head)), big_endian_(big_endian), sample_bytes_(sample_bytes) {}
+  ~RowWriter() { stop(); }
+
+  bool started() const { return started_; }
+
+  // Hands over a row (taken from `samples`); false once a write has failed.
+  bool push(std::vector<uint8_t>& samples) {
+    if (!started_) {
+      if (!file_.open(path_, &error_) || !file_.write(head_.data(), head_.size())) return false;
+      started_ = true;
+      thread_ = std::thread([this] { run(); });
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [this] { return !full_ || failed_; });
+    if (failed_) return false;
+    pending_.swap(samples);
+    full_ = true;
+    ready_.notify_one();
+    return true;
+  }
+
+  // Waits for the last row and renames the file into place.
+  bool commit(std::string* error) {
+    stop();
+    if (failed_ || !file_.commit(&error_)) {
+      *error = path_ + ": " + (error_.empty() ? "cannot write it" : error_);
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  void run() {
+    std::vector<uint8_t> row;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        ready_.wait(lock, [this] { return full_ || done_; });
+        if (!full_) return;
+        row.swap(pending_);
+        full_ = false;
+        idle_.notify_one();
+      }
+      if (big_endian_) swapSampleBytes(&row, sample_bytes_);
+      if (!file_.write(row.data(), row.size())) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        failed_ = true;
+        idle_.notify_one();
+        return;
+      }
+    }
+  }
+  void stop() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      ready_.notify_one();
+    }
+    thread_.join();
+  }
+
+  std::string path_, error_;
+  std::vector<uint8_t> head_;
+  bool big_endian_;
+  size_t sample_bytes_;
+  AtomicFileWriter file_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable ready_, idle_;
+  std::vector<uint8_t> pending_;
+  bool started_ = false, full_ = false, done_ = false, failed_ = false;
+};
 
 const char kHelp[] =
     "Usage: mrsv decode [options] IN.mrsv OUT\n"
@@ -256,6 +340,28 @@ int runDecode(int argc, char** argv) {
   DecodeOptions grid_options = options;
   if (!levels_out.empty()) grid_options.whole_array_synthesis = true;  // the same samples (grid.h)
   StreamDecoder decoder(grid_options, StreamContent::kGrid);
+  // A tiled grid decoded whole to raw or NRRD: written a row of tiles at a time.
+  std::unique_ptr<RowWriter> rows;
+  const GridFormat out_format = gridFormatOf(out);
+  if ((out_format == GridFormat::kRaw || out_format == GridFormat::kNrrd) && !args.flag("canonical") &&
+      levels_out.empty()) {
+    DecodeOptions row_options = grid_options;
+    row_options.tile_rows = [&](int, uint32_t, uint32_t, std::vector<uint8_t>& samples) {
+      if (!rows) {
+        // The output's header (NRRD; none for raw) from the whole output's sizes (spec 11.6).
+        const GridHeader& h = decoder.grid().header;
+        const uint32_t step = 1u << levels;
+        const uint32_t size[3] = {(h.size_x + step - 1) / step, (h.size_y + step - 1) / step,
+                                  (h.size_z + step - 1) / step};
+        std::vector<uint8_t> head;
+        std::string why;
+        if (!encodeGridOutput(out, h, Metadata{}, size, {}, endian == Endian::kBig, &head, &why)) return false;
+        rows = std::make_unique<RowWriter>(out, std::move(head), endian == Endian::kBig, sampleSize(h.sample_type));
+      }
+      return rows->push(samples);
+    };
+    decoder = StreamDecoder(row_options, StreamContent::kGrid);
+  }
   int next_level = INT_MAX;  // the levels from here up are written
   auto writeLevel = [&](int level, const uint32_t size[3], std::vector<uint8_t> samples) -> Error {
     const DecodedGrid& g = decoder.grid();
@@ -292,6 +398,17 @@ int runDecode(int argc, char** argv) {
     if (Error we = writeLevel(static_cast<int>(levels), grid.output_size, grid.samples); !we.ok())
       return reportError(cmd, input.name(), we);
 
+  if (rows && rows->started()) {
+    if (!grid.has_samples)
+      return fail(cmd, input.name() + ": the stream ends before its sample data", kExitInvalidData);
+    if (!rows->commit(&error)) return fail(cmd, error, kExitIo);
+    if (!quiet && (grid.output_size[0] != grid.header.size_x || grid.output_size[1] != grid.header.size_y ||
+                   grid.output_size[2] != grid.header.size_z))
+      std::fprintf(stderr, "mrsv decode: %s: reduced resolution %ux%ux%u\n", out.c_str(), grid.output_size[0],
+                   grid.output_size[1], grid.output_size[2]);
+    progress.update(1.0);
+    return kExitOk;
+  }
   std::vector<uint8_t> output;
   if (args.flag("canonical")) {
     output = canonicalGridOutput(grid);

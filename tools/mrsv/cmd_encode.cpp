@@ -93,8 +93,9 @@ const char kHelp[] =
     "                        error bound for every sample. Not with --roi\n"
     "  --out-of-core         with --tile and a raw IN: read IN a row of tiles at a time and\n"
     "                        keep the coded tiles in a temporary file, so that the memory is\n"
-    "                        a row of tiles, not the grid (lossless, --max-error or --step;\n"
-    "                        the same stream as without it)\n"
+    "                        a row of tiles, not the grid; the same stream as without it.\n"
+    "                        A --bits-per-sample or --psnr target reads IN once per step\n"
+    "                        tried (about 10 to 20 times)\n"
     "  --threads N           tiles coded at once (default: the number of cores); the output\n"
     "                        is the same whatever N\n"
     "  --quiet               no progress output\n"
@@ -317,9 +318,8 @@ int runEncode(int argc, char** argv) {
   if (args.flag("out-of-core")) {
     if (tile_sizes.empty() || !raw.has_layout)
       return fail(cmd, "--out-of-core needs --tile and a headerless raw IN (--dims, --type)", kExitUsage);
-    if (args.has("bits-per-sample") || args.has("psnr") || args.has("roi"))
-      return fail(cmd, "--out-of-core takes --lossless, --max-error or --step (not --bits-per-sample, --psnr "
-                       "or --roi in this version)", kExitUsage);
+    if (args.has("roi"))
+      return fail(cmd, "--out-of-core does not take --roi in this version", kExitUsage);
     GridHeader header = raw.header;
     if (args.has("nodata")) {
       if (!parseNodata(args.value("nodata"), header.sample_type, &header.nodata_bits, &error))

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,17 @@ struct DecodeOptions {
   // Tiled grids (spec 11): tiles decoded by this many threads at once. The
   // samples and any error are the same whatever the count.
   int threads = 1;
+  // Tiled grids, complete streams: when set, the samples are not gathered in
+  // DecodedGrid::samples but handed here a row of tiles at a time, in order,
+  // as soon as each row is decoded: the rows along the slowest axis with more
+  // than one tile, so that each is a contiguous part of the output. `first`
+  // and `count` are the row's output positions along that axis, `samples` its
+  // output samples, x fastest (the callee may take them). A writer keeps the
+  // memory to a row of tiles and writes while the next row decodes. The result
+  // is that of a whole decode, error included; the rows already handed over
+  // are then to be discarded, and so they are unless the decode ends with no
+  // error and has_samples. Returning false stops the decode with kIoError.
+  std::function<bool(int axis, uint32_t first, uint32_t count, std::vector<uint8_t>& samples)> tile_rows;
 };
 
 // Whether a progressive mesh decode stops at these counts (DecodeOptions).

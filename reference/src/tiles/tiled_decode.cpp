@@ -168,6 +168,68 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
   return {};
 }
 
+// DecodeOptions::tile_rows: the tiles decoded a row at a time, each row's
+// samples handed over as soon as it is decoded. The same checks and the same
+// error as decodeTiles() over every tile: each row's first error in file
+// order, the smallest offset over the rows (rows after an error are still
+// decoded, for their errors only).
+Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, uint64_t end_offset,
+                     const GridRegion& whole, const DecodeOptions& options, DecodedGrid* out) {
+  // Rows along the slowest axis with more than one tile: a contiguous run of
+  // tile numbers and of output samples.
+  int axis = 0;
+  for (int a = 0; a < 3; ++a)
+    if (tiles.count[a] > 1) axis = a;
+  uint64_t per_row = 1;
+  for (int a = 0; a < axis; ++a) per_row *= tiles.count[a];
+  // A whole decode refuses an output above the limit before decoding: so does this.
+  uint32_t out_size[3];
+  regionOutputSize(whole, options.reduce_levels, out_size);
+  const uint64_t out_bytes = uint64_t{out_size[0]} * out_size[1] * out_size[2] * sampleSize(tiles.grid.sample_type);
+  bool all_have_bands = !jobs.empty();
+  for (const TileJob& job : jobs) all_have_bands = all_have_bands && hasBand(job);
+  if (all_have_bands && out_bytes > options.max_output_bytes) {
+    const ChunkView& last = jobs.back().chunks.back();
+    return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(),
+                 "the output of " + std::to_string(out_bytes) + " bytes exceeds the decoder's limit"};
+  }
+  DecodeOptions row_options = options;
+  row_options.tile_rows = nullptr;
+  Error first_error;
+  bool has_samples = all_have_bands;
+  out->tiles_with_samples = 0;
+  for (uint32_t row = 0; row < tiles.count[axis]; ++row) {
+    const std::vector<TileJob> row_jobs(jobs.begin() + static_cast<std::ptrdiff_t>(row * per_row),
+                                        jobs.begin() + static_cast<std::ptrdiff_t>((row + 1) * per_row));
+    GridRegion region = whole;
+    region.lo[axis] = row * tiles.tiling.tile_size[axis];
+    region.hi[axis] = std::min<uint64_t>(whole.hi[axis], uint64_t{region.lo[axis]} + tiles.tiling.tile_size[axis]);
+    DecodedGrid part;
+    part.header = out->header;
+    Error e = decodeTiles(tiles, row_jobs, true, end_offset, region, row_options, &part);
+    out->bands_decoded += part.bands_decoded;
+    out->bands_total += part.bands_total;
+    out->tiles_with_samples += part.tiles_with_samples;
+    if (row == 0) out->wavelet = part.wavelet;
+    if (!e.ok()) {
+      if (first_error.ok() || e.offset < first_error.offset) first_error = e;
+      continue;
+    }
+    has_samples = has_samples && part.has_samples;
+    if (!first_error.ok() || !has_samples) continue;
+    // The row's place along the axis in output positions (spec 11.6 lattice).
+    const uint64_t step = uint64_t{1} << options.reduce_levels;
+    const uint32_t first = static_cast<uint32_t>((uint64_t{region.lo[axis]} + step - 1) / step);
+    if (!options.tile_rows(axis, first, part.output_size[axis], part.samples))
+      return Error{Status::kIoError, 0, "output", "the decoded rows could not be written"};
+  }
+  if (!first_error.ok()) return first_error;
+  out->has_samples = has_samples;
+  out->samples.clear();
+  if (has_samples) std::copy(out_size, out_size + 3, out->output_size);
+  return {};
+}
+
 Error decodeTiledGrid(const DecodeOptions& options, DecodedGrid* out) {
   const Container& c = out->container;
   const ChunkView end{kChunkEnd, 0, 0, c.end_chunk_offset, nullptr};
@@ -222,7 +284,10 @@ Error decodeTiledGrid(const DecodeOptions& options, DecodedGrid* out) {
   whole.hi[0] = out->header.size_x;
   whole.hi[1] = out->header.size_y;
   whole.hi[2] = out->header.size_z;
-  if (Error e = decodeTiles(tiles, jobs, complete, c.end_chunk_offset, whole, options, out); !e.ok())
+  const bool by_rows = options.tile_rows && complete;
+  if (Error e = by_rows ? decodeTileRows(tiles, jobs, c.end_chunk_offset, whole, options, out)
+                        : decodeTiles(tiles, jobs, complete, c.end_chunk_offset, whole, options, out);
+      !e.ok())
     return e;
   if (!structural.ok()) return structural;
   if (c.complete && !all_present)

@@ -79,21 +79,9 @@ TileResult encodeTileSamples(const TileGrid& tiles, uint64_t tile, const std::ve
   return r;
 }
 
-namespace {
-
-TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
-                      const WaveletEncodeOptions& options) {
-  return encodeTileSamples(tiles, tile, tileSamples(tiles, tile, samples), options);
-}
-
-// A tile at a given step (rate and PSNR targets): the full pyramid and 2 and
-// 1 levels are tried, and the one with the least sse + lambda * bits is kept,
-// lambda = (ln 2 / 6) step^2, the slope of D(R) = sigma^2 2^-2R at D = step^2 / 12.
-// A small tile pays for each band's cold context models and chunk framing,
-// so it often does best with fewer levels (decision D77).
-TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
-                            const WaveletEncodeOptions& options) {
-  TileResult best = encodeTile(tiles, tile, samples, options);
+TileResult encodeTileSamplesAtStep(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& tile_samples,
+                                   const WaveletEncodeOptions& options) {
+  TileResult best = encodeTileSamples(tiles, tile, tile_samples, options);
   if (!best.error.ok() || options.progressive) return best;
   const double lambda = std::log(2.0) / 6 * options.step * options.step;
   auto cost = [&](const TileResult& r) { return r.sse + lambda * 8 * static_cast<double>(r.bytes); };
@@ -101,10 +89,68 @@ TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vec
     if (levels >= best.levels || levels > options.max_levels) continue;
     WaveletEncodeOptions fewer = options;
     fewer.max_levels = levels;
-    TileResult r = encodeTile(tiles, tile, samples, fewer);
+    TileResult r = encodeTileSamples(tiles, tile, tile_samples, fewer);
     if (r.error.ok() && cost(r) < cost(best)) best = std::move(r);
   }
   return best;
+}
+
+Error searchTileStep(const GridHeader& grid, uint64_t tiles, const Metadata& metadata, const ErrorTally& tally,
+                     const WaveletEncodeOptions& options,
+                     const std::function<Error(const WaveletEncodeOptions&, StepTrial*)>& trial,
+                     const std::function<void()>& keep, int* iterations) {
+  // The framed bytes of everything but the tile chunks: header, GHDR, TINF,
+  // TIDX, MEND, and the meta chunk with its recorded error figures.
+  const Metadata probe = ErrorTally::probe(metadata);
+  auto overhead = [&](uint64_t tile_chunks) {
+    return double(kFileHeaderSize + 3 * (kChunkHeaderSize + kChunkCrcSize) + kGridHeaderSize +
+                  kTilingHeaderSize + (kChunkHeaderSize + kChunkCrcSize) + tiles + 4 * tile_chunks +
+                  serializeMetadata(probe).size() + kChunkHeaderSize + kChunkCrcSize);
+  };
+  const bool by_rate = options.bits_per_sample > 0;
+  const double range = std::max(tally.hi - tally.lo, 1e-300);
+  const double target_bits = options.bits_per_sample * static_cast<double>(grid.sampleCount());
+  double lo_log = std::log2(range) - 30, hi_log = std::log2(range) + 2;
+  bool found = false;
+  WaveletEncodeOptions step_options = options;
+  step_options.bits_per_sample = 0;
+  step_options.psnr = 0;
+  for (int it = 0; it < 40 && hi_log - lo_log > 1e-3; ++it) {
+    const double mid = 0.5 * (lo_log + hi_log);
+    step_options.step = std::exp2(mid);
+    StepTrial t;
+    if (Error e = trial(step_options, &t); !e.ok()) return e;
+    ++*iterations;
+    const double total_bits = 8 * (static_cast<double>(t.bytes) + overhead(t.chunks));
+    const double mse = tally.valid ? t.sse / static_cast<double>(tally.valid) : 0;
+    const bool meets = by_rate ? total_bits <= target_bits
+                               : (mse == 0 || 10 * std::log10(range * range / mse) >= options.psnr);
+    if (meets) {
+      keep();
+      found = true;
+      (by_rate ? hi_log : lo_log) = mid;
+      if (by_rate && total_bits >= 0.999 * target_bits) break;
+    } else {
+      (by_rate ? lo_log : hi_log) = mid;
+    }
+  }
+  if (!found)
+    return invalid(by_rate ? "bits_per_sample" : "psnr",
+                   by_rate ? "the rate is too low for even the coarsest approximation of every tile"
+                           : "the PSNR target cannot be met");
+  return {};
+}
+
+namespace {
+
+TileResult encodeTile(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
+                      const WaveletEncodeOptions& options) {
+  return encodeTileSamples(tiles, tile, tileSamples(tiles, tile, samples), options);
+}
+
+TileResult encodeTileAtStep(const TileGrid& tiles, uint64_t tile, const std::vector<uint8_t>& samples,
+                            const WaveletEncodeOptions& options) {
+  return encodeTileSamplesAtStep(tiles, tile, tileSamples(tiles, tile, samples), options);
 }
 
 }  // namespace
@@ -190,61 +236,21 @@ Error encodeTiledGrid(const GridHeader& header, const std::vector<uint8_t>& samp
   WaveletEncodeReport rep;
   ErrorTally tally;
   tally.addSamples(h, samples.data(), samples.size());
-  const uint64_t valid = tally.valid;
-  const double lo = tally.lo, hi = tally.hi;
-  // The framed bytes of everything but the tile chunks: header, GHDR, TINF,
-  // TIDX, MEND, and the meta chunk with its recorded error figures.
-  const Metadata probe = ErrorTally::probe(metadata);
-  auto overhead = [&](uint64_t tile_chunks) {
-    return double(kFileHeaderSize + 3 * (kChunkHeaderSize + kChunkCrcSize) + kGridHeaderSize +
-                  kTilingHeaderSize + (kChunkHeaderSize + kChunkCrcSize) + n_tiles + 4 * tile_chunks +
-                  serializeMetadata(probe).size() + kChunkHeaderSize + kChunkCrcSize);
-  };
-  auto totals = [&](uint64_t* bytes, uint64_t* chunks, double* sse) {
-    *bytes = *chunks = 0;
-    *sse = 0;
-    for (const TileResult& r : results) {
-      *bytes += r.bytes;
-      *chunks += r.chunks.size();
-      *sse += r.sse;
-    }
-  };
-  const bool by_rate = options.bits_per_sample > 0, by_psnr = options.psnr > 0;
-  if (by_rate || by_psnr) {
-    // One step for every tile, found by bisection on its logarithm; a larger
-    // step gives fewer bytes and a lower PSNR.
-    const double range = std::max(hi - lo, 1e-300);
-    const double target_bits = options.bits_per_sample * static_cast<double>(h.sampleCount());
-    double lo_log = std::log2(range) - 30, hi_log = std::log2(range) + 2;
+  if (options.bits_per_sample > 0 || options.psnr > 0) {
     std::vector<TileResult> best;
-    WaveletEncodeOptions step_options = options;
-    step_options.bits_per_sample = 0;
-    step_options.psnr = 0;
-    for (int it = 0; it < 40 && hi_log - lo_log > 1e-3; ++it) {
-      const double mid = 0.5 * (lo_log + hi_log);
-      step_options.step = std::exp2(mid);
+    auto trial = [&](const WaveletEncodeOptions& o, StepTrial* t) -> Error {
       done = 0;
-      if (Error e = encodeAll(step_options); !e.ok()) return e;
-      ++rep.iterations;
-      uint64_t bytes, chunks;
-      double sse;
-      totals(&bytes, &chunks, &sse);
-      const double total_bits = 8 * (static_cast<double>(bytes) + overhead(chunks));
-      const double mse = valid ? sse / static_cast<double>(valid) : 0;
-      const bool meets = by_rate ? total_bits <= target_bits
-                                 : (mse == 0 || 10 * std::log10(range * range / mse) >= options.psnr);
-      if (meets) {
-        best.swap(results);  // results is all written again by the next step tried
-        (by_rate ? hi_log : lo_log) = mid;
-        if (by_rate && total_bits >= 0.999 * target_bits) break;
-      } else {
-        (by_rate ? lo_log : hi_log) = mid;
+      if (Error e = encodeAll(o); !e.ok()) return e;
+      for (const TileResult& r : results) {
+        t->bytes += r.bytes;
+        t->chunks += r.chunks.size();
+        t->sse += r.sse;
       }
-    }
-    if (best.empty())
-      return invalid(by_rate ? "bits_per_sample" : "psnr",
-                     by_rate ? "the rate is too low for even the coarsest approximation of every tile"
-                             : "the PSNR target cannot be met");
+      return {};
+    };
+    auto keep = [&]() { best.swap(results); };  // results is all written again by the next step tried
+    if (Error e = searchTileStep(h, n_tiles, metadata, tally, options, trial, keep, &rep.iterations); !e.ok())
+      return e;
     results.swap(best);
   } else {
     if (Error e = encodeAll(options); !e.ok()) return e;

@@ -80,25 +80,27 @@ std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& rec
   return out;
 }
 
-Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
-                                const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
-                                ByteSink& out, WaveletEncodeReport* report) {
-  GridHeader h = header;
-  h.coding = GridCoding::kTiled;
-  if (std::string problem = gridHeaderProblem(h); !problem.empty()) return invalid("grid_header", problem);
-  TilingHeader tiling;
-  for (int a = 0; a < 3; ++a) tiling.tile_size[a] = a < h.num_dims ? tiled.tile_size[a] : 1;
-  if (std::string problem = tilingProblem(tiling, h); !problem.empty()) return invalid("tile_size", problem);
-  if (options.has_roi) return invalid("roi", "a region of interest is not supported with tiles in this version");
-  if (options.bits_per_sample > 0 || options.psnr > 0)
-    return invalid("options", "an out-of-core encoding takes a lossless, error-bound, step or keep target "
-                              "(a rate or PSNR target reads the grid once per step tried)");
-  const TileGrid tiles = TileGrid::make(h, tiling);
+namespace {
+
+// One pass over the grid, a row of tiles at a time: every tile coded with
+// `options` (at_step: the levels chosen as a rate search does), its chunks
+// appended to `spill`. Also the samples' figures into `samples` unless null.
+struct Pass {
+  std::unique_ptr<std::FILE, FileCloser> spill;
+  std::vector<std::vector<SpilledChunk>> spilled;  // per tile
+  std::vector<TileResult> stats;                   // per tile, without chunks
+  StepTrial totals;
+};
+
+Error codePass(const TileGrid& tiles, GridBoxReader& reader, const WaveletEncodeOptions& options, bool at_step,
+               const TiledEncodeOptions& tiled, ErrorTally* samples, Pass* pass) {
+  const GridHeader& h = tiles.grid;
   const size_t bytes = sampleSize(h.sample_type);
-  std::unique_ptr<std::FILE, FileCloser> spill(std::tmpfile());
-  if (!spill) return ioFailure("cannot create a temporary file for the coded tiles");
-  std::vector<std::vector<SpilledChunk>> spilled(tiles.tileCount());
-  ErrorTally tally;
+  pass->spill.reset(std::tmpfile());
+  if (!pass->spill) return ioFailure("cannot create a temporary file for the coded tiles");
+  pass->spilled.assign(tiles.tileCount(), {});
+  pass->stats.assign(tiles.tileCount(), {});
+  pass->totals = StepTrial{};
   uint64_t spill_end = 0, done = 0;
   // Row by row of tiles (along x), slab by slab (z): the box of one row.
   for (uint32_t tz = 0; tz < tiles.count[2]; ++tz) {
@@ -111,36 +113,97 @@ Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader,
       std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * bytes);
       std::string error;
       if (!reader.read(origin, size, box.data(), &error)) return ioFailure("reading the grid: " + error);
-      tally.addSamples(h, box.data(), box.size());
+      if (samples) samples->addSamples(h, box.data(), box.size());
       std::vector<TileResult> row(tiles.count[0]);
       parallelFor(row.size(), tiled.threads, [&](uint64_t i) {
-        row[i] = encodeTileSamples(tiles, first + i, tileSamplesFrom(tiles, first + i, box.data(), origin, size),
-                                   options);
+        std::vector<uint8_t> tile_samples = tileSamplesFrom(tiles, first + i, box.data(), origin, size);
+        row[i] = at_step ? encodeTileSamplesAtStep(tiles, first + i, tile_samples, options)
+                         : encodeTileSamples(tiles, first + i, tile_samples, options);
       });
       for (uint64_t i = 0; i < row.size(); ++i) {
         TileResult& r = row[i];
         if (!r.error.ok()) return r.error;
-        tally.addTile(r);
         for (const auto& [type, payload] : r.chunks) {
-          if (std::fwrite(payload.data(), 1, payload.size(), spill.get()) != payload.size())
+          if (std::fwrite(payload.data(), 1, payload.size(), pass->spill.get()) != payload.size())
             return ioFailure("cannot write the temporary file of coded tiles (disk full?)");
-          spilled[first + i].push_back({type, spill_end, static_cast<uint32_t>(payload.size())});
+          pass->spilled[first + i].push_back({type, spill_end, static_cast<uint32_t>(payload.size())});
           spill_end += payload.size();
         }
+        pass->totals.bytes += r.bytes;
+        pass->totals.chunks += r.chunks.size();
+        pass->totals.sse += r.sse;
+        r.chunks.clear();
+        pass->stats[first + i] = std::move(r);
       }
       done += row.size();
       if (tiled.progress) tiled.progress(done, tiles.tileCount());
     }
   }
-  if (std::fflush(spill.get()) != 0) return ioFailure("cannot write the temporary file of coded tiles");
+  if (std::fflush(pass->spill.get()) != 0) return ioFailure("cannot write the temporary file of coded tiles");
+  return {};
+}
+
+// The samples' figures alone (a rate or PSNR search needs their range first).
+Error tallySamples(const TileGrid& tiles, GridBoxReader& reader, ErrorTally* tally) {
+  const GridHeader& h = tiles.grid;
+  for (uint32_t tz = 0; tz < tiles.count[2]; ++tz)
+    for (uint32_t ty = 0; ty < tiles.count[1]; ++ty) {
+      uint32_t origin[3], size[3];
+      tiles.box((uint64_t{tz} * tiles.count[1] + ty) * tiles.count[0], origin, size);
+      origin[0] = 0;
+      size[0] = h.size_x;
+      std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * sampleSize(h.sample_type));
+      std::string error;
+      if (!reader.read(origin, size, box.data(), &error)) return ioFailure("reading the grid: " + error);
+      tally->addSamples(h, box.data(), box.size());
+    }
+  return {};
+}
+
+}  // namespace
+
+Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                                const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
+                                ByteSink& out, WaveletEncodeReport* report) {
+  GridHeader h = header;
+  h.coding = GridCoding::kTiled;
+  if (std::string problem = gridHeaderProblem(h); !problem.empty()) return invalid("grid_header", problem);
+  TilingHeader tiling;
+  for (int a = 0; a < 3; ++a) tiling.tile_size[a] = a < h.num_dims ? tiled.tile_size[a] : 1;
+  if (std::string problem = tilingProblem(tiling, h); !problem.empty()) return invalid("tile_size", problem);
+  if (options.has_roi) return invalid("roi", "a region of interest is not supported with tiles in this version");
+  const TileGrid tiles = TileGrid::make(h, tiling);
+  ErrorTally tally;
+  WaveletEncodeReport rep;
+  Pass pass;
+  if (options.bits_per_sample > 0 || options.psnr > 0) {
+    // A pass over the grid per step tried (about 10 to 20), each into its own
+    // spill file; the best one that meets the target is kept (as
+    // encodeTiledGrid() keeps its best tiles, so the streams agree).
+    if (Error e = tallySamples(tiles, reader, &tally); !e.ok()) return e;
+    Pass trying;
+    auto trial = [&](const WaveletEncodeOptions& o, StepTrial* t) -> Error {
+      if (Error e = codePass(tiles, reader, o, options.step == 0, tiled, nullptr, &trying); !e.ok()) return e;
+      *t = trying.totals;
+      return {};
+    };
+    auto keep = [&]() { std::swap(pass, trying); };
+    if (Error e = searchTileStep(h, tiles.tileCount(), metadata, tally, options, trial, keep, &rep.iterations);
+        !e.ok())
+      return e;
+  } else {
+    if (Error e = codePass(tiles, reader, options, false, tiled, &tally, &pass); !e.ok()) return e;
+    rep.iterations = 1;
+  }
+  for (const TileResult& r : pass.stats) tally.addTile(r);
+  std::unique_ptr<std::FILE, FileCloser>& spill = pass.spill;
+  const std::vector<std::vector<SpilledChunk>>& spilled = pass.spilled;
   // The stream, as encodeTiledGrid() writes it.
   std::vector<std::vector<uint32_t>> lengths(spilled.size());
   for (size_t t = 0; t < spilled.size(); ++t)
     for (const SpilledChunk& c : spilled[t]) lengths[t].push_back(c.length);
   std::vector<uint8_t> index, counts;
   if (Error e = tileIndexPayload(lengths, &index, &counts); !e.ok()) return e;
-  WaveletEncodeReport rep;
-  rep.iterations = 1;
   const Metadata recorded = tally.record(metadata, options, &rep);
   const std::vector<uint8_t> head = tiledStreamHead(h, recorded, tiling, index);
   uint64_t written = head.size();
