@@ -116,7 +116,6 @@ struct StarLink {
   std::vector<uint32_t> local_of_, stamp_of_;
   std::vector<uint32_t> gathered_;  // the link's vertices in the order first met
   uint32_t stamp_ = 0;
-  mutable std::vector<uint32_t> ranked_;  // localOfRank()'s
 };
 
 }  // namespace mrsv
