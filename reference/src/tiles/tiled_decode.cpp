@@ -23,6 +23,21 @@ bool hasBand(const TileJob& job) {
   return false;
 }
 
+bool everyTileHasABand(const std::vector<TileJob>& jobs) {
+  bool all = !jobs.empty();
+  for (const TileJob& job : jobs) all = all && hasBand(job);
+  return all;
+}
+
+// A whole decode refuses an output above the decoder's limit before decoding
+// (at the last tile chunk), whether it gathers the output or hands it over by rows.
+Error outputLimitError(const std::vector<TileJob>& jobs, uint64_t out_bytes, const DecodeOptions& options) {
+  if (out_bytes <= options.max_output_bytes) return {};
+  const ChunkView& last = jobs.back().chunks.back();
+  return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(),
+               "the output of " + std::to_string(out_bytes) + " bytes exceeds the decoder's limit"};
+}
+
 // Copies the part of a decoded tile inside `region` to the output lattice.
 void placeTile(const DecodedGrid& tile, const uint32_t origin[3], const GridRegion& region, int levels,
                const uint32_t out_size[3], size_t sample_bytes, uint8_t* out) {
@@ -98,16 +113,13 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
                        " levels needs tile sizes that are multiples of 2^" + std::to_string(levels)};
   }
   const size_t sample_bytes = sampleSize(tiles.grid.sample_type);
-  bool all_have_bands = !jobs.empty();
-  for (const TileJob& job : jobs) all_have_bands = all_have_bands && hasBand(job);
+  const bool all_have_bands = everyTileHasABand(jobs);
   uint32_t out_size[3];
   regionOutputSize(region, levels, out_size);
   const uint64_t out_bytes = uint64_t{out_size[0]} * out_size[1] * out_size[2] * sample_bytes;
   if (all_have_bands) {
+    if (Error e = outputLimitError(jobs, out_bytes, options); !e.ok()) return e;
     const ChunkView& last = jobs.back().chunks.back();
-    if (out_bytes > options.max_output_bytes)
-      return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(),
-                   "the output of " + std::to_string(out_bytes) + " bytes exceeds the decoder's limit"};
     try {
       out->samples.assign(out_bytes, 0);
     } catch (const std::bad_alloc&) {
@@ -182,17 +194,12 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
     if (tiles.count[a] > 1) axis = a;
   uint64_t per_row = 1;
   for (int a = 0; a < axis; ++a) per_row *= tiles.count[a];
-  // A whole decode refuses an output above the limit before decoding: so does this.
   uint32_t out_size[3];
   regionOutputSize(whole, options.reduce_levels, out_size);
   const uint64_t out_bytes = uint64_t{out_size[0]} * out_size[1] * out_size[2] * sampleSize(tiles.grid.sample_type);
-  bool all_have_bands = !jobs.empty();
-  for (const TileJob& job : jobs) all_have_bands = all_have_bands && hasBand(job);
-  if (all_have_bands && out_bytes > options.max_output_bytes) {
-    const ChunkView& last = jobs.back().chunks.back();
-    return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(),
-                 "the output of " + std::to_string(out_bytes) + " bytes exceeds the decoder's limit"};
-  }
+  const bool all_have_bands = everyTileHasABand(jobs);
+  if (all_have_bands)
+    if (Error e = outputLimitError(jobs, out_bytes, options); !e.ok()) return e;
   DecodeOptions row_options = options;
   row_options.tile_rows = nullptr;
   Error first_error;

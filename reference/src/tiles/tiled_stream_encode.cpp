@@ -82,6 +82,18 @@ std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& rec
 
 namespace {
 
+// Reads the box of the row of tiles (ty, tz): the grid's whole width.
+Error readRowOfTiles(const TileGrid& tiles, GridBoxReader& reader, uint32_t ty, uint32_t tz, uint32_t origin[3],
+                     uint32_t size[3], std::vector<uint8_t>* box) {
+  tiles.box((uint64_t{tz} * tiles.count[1] + ty) * tiles.count[0], origin, size);
+  origin[0] = 0;
+  size[0] = tiles.grid.size_x;
+  box->resize(uint64_t{size[0]} * size[1] * size[2] * sampleSize(tiles.grid.sample_type));
+  std::string error;
+  if (!reader.read(origin, size, box->data(), &error)) return ioFailure("reading the grid: " + error);
+  return {};
+}
+
 // One pass over the grid, a row of tiles at a time: every tile coded with
 // `options` (at_step: the levels chosen as a rate search does), its chunks
 // appended to `spill`. Also the samples' figures into `samples` unless null.
@@ -95,7 +107,6 @@ struct Pass {
 Error codePass(const TileGrid& tiles, GridBoxReader& reader, const WaveletEncodeOptions& options, bool at_step,
                const TiledEncodeOptions& tiled, ErrorTally* samples, Pass* pass) {
   const GridHeader& h = tiles.grid;
-  const size_t bytes = sampleSize(h.sample_type);
   pass->spill.reset(std::tmpfile());
   if (!pass->spill) return ioFailure("cannot create a temporary file for the coded tiles");
   pass->spilled.assign(tiles.tileCount(), {});
@@ -107,12 +118,8 @@ Error codePass(const TileGrid& tiles, GridBoxReader& reader, const WaveletEncode
     for (uint32_t ty = 0; ty < tiles.count[1]; ++ty) {
       const uint64_t first = (uint64_t{tz} * tiles.count[1] + ty) * tiles.count[0];
       uint32_t origin[3], size[3];
-      tiles.box(first, origin, size);
-      origin[0] = 0;
-      size[0] = h.size_x;
-      std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * bytes);
-      std::string error;
-      if (!reader.read(origin, size, box.data(), &error)) return ioFailure("reading the grid: " + error);
+      std::vector<uint8_t> box;
+      if (Error e = readRowOfTiles(tiles, reader, ty, tz, origin, size, &box); !e.ok()) return e;
       if (samples) samples->addSamples(h, box.data(), box.size());
       std::vector<TileResult> row(tiles.count[0]);
       parallelFor(row.size(), tiled.threads, [&](uint64_t i) {
@@ -145,17 +152,12 @@ Error codePass(const TileGrid& tiles, GridBoxReader& reader, const WaveletEncode
 
 // The samples' figures alone (a rate or PSNR search needs their range first).
 Error tallySamples(const TileGrid& tiles, GridBoxReader& reader, ErrorTally* tally) {
-  const GridHeader& h = tiles.grid;
   for (uint32_t tz = 0; tz < tiles.count[2]; ++tz)
     for (uint32_t ty = 0; ty < tiles.count[1]; ++ty) {
       uint32_t origin[3], size[3];
-      tiles.box((uint64_t{tz} * tiles.count[1] + ty) * tiles.count[0], origin, size);
-      origin[0] = 0;
-      size[0] = h.size_x;
-      std::vector<uint8_t> box(uint64_t{size[0]} * size[1] * size[2] * sampleSize(h.sample_type));
-      std::string error;
-      if (!reader.read(origin, size, box.data(), &error)) return ioFailure("reading the grid: " + error);
-      tally->addSamples(h, box.data(), box.size());
+      std::vector<uint8_t> box;
+      if (Error e = readRowOfTiles(tiles, reader, ty, tz, origin, size, &box); !e.ok()) return e;
+      tally->addSamples(tiles.grid, box.data(), box.size());
     }
   return {};
 }
