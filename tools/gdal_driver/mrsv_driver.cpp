@@ -111,7 +111,12 @@ class MrsvDataset final : public GDALPamDataset {
   // The samples of this resolution, decoded on first use; false (with a GDAL
   // error naming the file, once) when the stream cannot be decoded.
   bool decode();
-  // Tiled grids: block (x, y), one tile of this resolution, by region decode.
+  // Tiled grids: the window of this resolution's positions [x, x + x_size) x
+  // [y, y + y_size) by region decode (spec 11.5, 11.6) on `threads` threads,
+  // samples in host order; false, with a GDAL error naming the file and the
+  // window, when the stream cannot give it.
+  bool decodeWindow(int x, int y, int x_size, int y_size, int threads, mrsv::DecodedGrid* grid);
+  // Tiled grids: block (x, y), one tile of this resolution.
   CPLErr readTile(int block_x, int block_y, void* image);
   bool tiled() const { return stream_->tiled; }
 
@@ -163,36 +168,11 @@ CPLErr MrsvRasterBand::IRasterIO(GDALRWFlag rw, int x, int y, int x_size, int y_
   if (rw != GF_Read || !ds->tiled() || one_block || x_size != buffer_x || y_size != buffer_y)
     return GDALPamRasterBand::IRasterIO(rw, x, y, x_size, y_size, buffer, buffer_x, buffer_y, buffer_type,
                                         pixel_space, line_space, extra);
-  if (ds->failed_) return CE_Failure;  // said once already
-  // The window's positions on this resolution's 2^K lattice (spec 11.6) as
-  // a box of full-resolution samples.
-  const mrsv::GridHeader& h = ds->stream_->header;
-  const int k = ds->reduce_;
-  mrsv::GridRegion region;
-  region.lo[0] = static_cast<uint32_t>(x) << k;
-  region.lo[1] = static_cast<uint32_t>(y) << k;
-  region.hi[0] = std::min<uint32_t>(h.size_x, (static_cast<uint32_t>(x + x_size - 1) << k) + 1);
-  region.hi[1] = std::min<uint32_t>(h.num_dims > 1 ? h.size_y : 1, (static_cast<uint32_t>(y + y_size - 1) << k) + 1);
-  mrsv::DecodeOptions options;
-  options.reduce_levels = k;
-  options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   mrsv::DecodedGrid grid;
-  mrsv::Error e = mrsv::decodeGridRegion(*ds->stream_->source, region, options, &grid);
-  const char* problem = !e.ok() ? nullptr
-                        : !grid.has_samples ? "the stream ends before the window's samples"
-                        : static_cast<int>(grid.output_size[0]) != x_size || static_cast<int>(grid.output_size[1]) != y_size
-                            ? "the window decoded to another size"
-                            : nullptr;
-  if (!e.ok() || problem) {
-    CPLError(CE_Failure, CPLE_AppDefined, "%s: window %d,%d %dx%d: %s", ds->stream_->name.c_str(), x, y, x_size,
-             y_size, problem ? problem : e.describe().c_str());
-    ds->failed_ = true;
+  if (!ds->decodeWindow(x, y, x_size, y_size, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
+                        &grid))
     return CE_Failure;
-  }
   const int bytes = GDALGetDataTypeSizeBytes(eDataType);
-#if !CPL_IS_LSB
-  GDALSwapWords(grid.samples.data(), bytes, x_size * y_size, bytes);  // stored little-endian
-#endif
   for (int row = 0; row < y_size; ++row)
     GDALCopyWords(grid.samples.data() + static_cast<size_t>(row) * x_size * bytes, eDataType, bytes,
                   static_cast<uint8_t*>(buffer) + row * line_space, buffer_type, static_cast<int>(pixel_space), x_size);
@@ -272,40 +252,54 @@ bool MrsvDataset::decode() {
   return true;
 }
 
-CPLErr MrsvDataset::readTile(int block_x, int block_y, void* image) {
-  if (failed_) return CE_Failure;  // said once already
+bool MrsvDataset::decodeWindow(int x, int y, int x_size, int y_size, int threads, mrsv::DecodedGrid* grid) {
+  if (failed_) return false;  // said once already
+  // The window's positions on this resolution's 2^K lattice (spec 11.6) as
+  // a box of full-resolution samples.
   const mrsv::GridHeader& h = stream_->header;
-  const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
-  int bx = 0, by = 0;
-  GetRasterBand(1)->GetBlockSize(&bx, &by);
-  // The tile's box in full-resolution samples; the reduced decode gives the
-  // lattice positions inside it (spec 11.6), at most a block's worth.
+  const int k = reduce_;
   mrsv::GridRegion region;
-  const uint32_t index[2] = {static_cast<uint32_t>(block_x), static_cast<uint32_t>(block_y)};
-  for (int a = 0; a < 2; ++a) {
-    region.lo[a] = index[a] * stream_->tile_size[a];
-    region.hi[a] = std::min<uint32_t>(full[a], region.lo[a] + stream_->tile_size[a]);
-  }
+  region.lo[0] = static_cast<uint32_t>(x) << k;
+  region.lo[1] = static_cast<uint32_t>(y) << k;
+  region.hi[0] = std::min<uint32_t>(h.size_x, (static_cast<uint32_t>(x + x_size - 1) << k) + 1);
+  region.hi[1] = std::min<uint32_t>(h.num_dims > 1 ? h.size_y : 1, (static_cast<uint32_t>(y + y_size - 1) << k) + 1);
   mrsv::DecodeOptions options;
-  options.reduce_levels = reduce_;
-  mrsv::DecodedGrid grid;
-  mrsv::Error e = mrsv::decodeGridRegion(*stream_->source, region, options, &grid);
-  const char* problem = !e.ok() ? nullptr : !grid.has_samples ? "the stream ends before this tile's samples" : nullptr;
+  options.reduce_levels = k;
+  options.threads = threads;
+  mrsv::Error e = mrsv::decodeGridRegion(*stream_->source, region, options, grid);
+  const char* problem = !e.ok() ? nullptr
+                        : !grid->has_samples ? "the stream ends before the window's samples"
+                        : static_cast<int>(grid->output_size[0]) != x_size ||
+                                  static_cast<int>(grid->output_size[1]) != y_size
+                            ? "the window decoded to another size"
+                            : nullptr;
   if (!e.ok() || problem) {
-    CPLError(CE_Failure, CPLE_AppDefined, "%s: tile %d,%d: %s", stream_->name.c_str(), block_x, block_y,
+    CPLError(CE_Failure, CPLE_AppDefined, "%s: window %d,%d %dx%d: %s", stream_->name.c_str(), x, y, x_size, y_size,
              problem ? problem : e.describe().c_str());
     failed_ = true;
-    return CE_Failure;
+    return false;
   }
-  const size_t bytes = mrsv::sampleSize(h.sample_type);
-  const size_t row_out = static_cast<size_t>(bx) * bytes, row_in = size_t{grid.output_size[0]} * bytes;
+#if !CPL_IS_LSB
+  const int bytes = static_cast<int>(mrsv::sampleSize(h.sample_type));
+  GDALSwapWords(grid->samples.data(), bytes, x_size * y_size, bytes);  // stored little-endian
+#endif
+  return true;
+}
+
+CPLErr MrsvDataset::readTile(int block_x, int block_y, void* image) {
+  int bx = 0, by = 0;
+  GetRasterBand(1)->GetBlockSize(&bx, &by);
+  // The block's positions; an edge block is cut at the raster's edge.
+  const int x = block_x * bx, y = block_y * by;
+  const int x_size = std::min(bx, nRasterXSize - x), y_size = std::min(by, nRasterYSize - y);
+  mrsv::DecodedGrid grid;
+  if (!decodeWindow(x, y, x_size, y_size, 1, &grid)) return CE_Failure;
+  const size_t bytes = mrsv::sampleSize(stream_->header.sample_type);
+  const size_t row_out = static_cast<size_t>(bx) * bytes, row_in = static_cast<size_t>(x_size) * bytes;
   auto* out = static_cast<uint8_t*>(image);
   std::memset(out, 0, row_out * static_cast<size_t>(by));  // the part of an edge block outside the raster
-  for (uint32_t y = 0; y < grid.output_size[1] && y < static_cast<uint32_t>(by); ++y)
-    std::memcpy(out + y * row_out, grid.samples.data() + y * row_in, std::min(row_in, row_out));
-#if !CPL_IS_LSB
-  GDALSwapWords(image, static_cast<int>(bytes), bx * by, static_cast<int>(bytes));  // stored little-endian
-#endif
+  for (int row = 0; row < y_size; ++row)
+    std::memcpy(out + row * row_out, grid.samples.data() + row * row_in, row_in);
   return CE_None;
 }
 
