@@ -29,7 +29,7 @@ ErrorBound errorBoundOf(double value) {
 py::tuple meshGrid(const py::object& source_object, const std::string& method,
                    const std::optional<double>& max_error, const std::optional<uint64_t>& triangles,
                    const std::optional<uint64_t>& tets, int levels, const py::object& byte_limit,
-                   bool border_rule, const std::string& distance, double z_scale) {
+                   bool border_rule, const std::string& distance, double z_scale, bool remove_vertices) {
   if (method != "insertion" && method != "quadtree") throw py::value_error("method= must be 'insertion' or 'quadtree'");
   if (triangles && tets) throw py::value_error("give triangles= or tets=, not both");
   if ((triangles && *triangles == 0) || (tets && *tets == 0))
@@ -37,6 +37,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (!max_error && !triangles && !tets) throw py::value_error("give max_error=, triangles= or tets=");
   if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
   if (distance != "mesh" && distance != "trilinear") throw py::value_error("distance= must be 'mesh' or 'trilinear'");
+  if (remove_vertices && method != "quadtree") throw py::value_error("remove_vertices=True is for method='quadtree'");
   InsertionLimits limits;
   if (max_error) limits.max_error = errorBoundOf(*max_error);
   limits.max_cells = triangles ? *triangles : tets ? *tets : 0;
@@ -84,6 +85,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
       qt.threshold = limits.max_error;
       qt.max_triangles = limits.max_cells;
       qt.tile_borders = limits.max_error.set() && border_rule && field.size[0] >= 4 && field.size[1] >= 4;
+      qt.remove_vertices = remove_vertices;
       ok = quadtreeMesh(field, nullptr, qt, &mesh, &error);
     } else if (ok && dims == 2) {
       TerrainInserter inserter(grid.header.size_x, grid.header.size_y);
@@ -117,14 +119,14 @@ void registerReconstruct(py::module_& m) {
   m.def("mesh_grid", &meshGrid, py::arg("source"), py::kw_only(), py::arg("method") = "insertion",
         py::arg("max_error") = py::none(), py::arg("triangles") = py::none(), py::arg("tets") = py::none(),
         py::arg("levels") = 0, py::arg("bytes") = py::none(), py::arg("border_rule") = true,
-        py::arg("distance") = "mesh", py::arg("z_scale") = 1.0,
+        py::arg("distance") = "mesh", py::arg("z_scale") = 1.0, py::arg("remove_vertices") = false,
         R"doc(An adaptive mesh of a grid stream of integer samples (as 'mrsv mesh').
 
 method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
 (spec 9; 2-D). Stop at max_error (every sample within it), or at triangles=
 (2-D) / tets= (3-D) cells. levels and bytes choose the stage as in decode;
-border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D) and z_scale as
-the CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and
+border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D), z_scale and
+remove_vertices (quadtree: the vertex-removal pass of spec 9.7) as the CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and
 origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
 (N,) float64 samples at the vertices).)doc");
 }

@@ -245,6 +245,11 @@ expect 0 "$mrsv" mesh --quiet --max-error 5 --canonical "$work/p.mrsv" "$work/p2
 if cmp -s "$work/p1.bin" "$work/p2.bin" && head -c 26 "$work/p1.bin" | grep -q "mrsv-canonical-grid-mesh 1"; then ok; else bad "canonical mesh output not repeatable"; fi
 expect 0 "$mrsv" mesh --max-error 5 --progressive "$work/p.mrsv" "$work/pp.ply"; stderr_has "stage 1 of"
 expect 0 "$mrsv" mesh --quiet --method quadtree --max-error 5 "$work/p.mrsv" "$work/q.off"
+expect 0 "$mrsv" mesh --method quadtree --max-error 5 --remove-vertices "$work/p.mrsv" "$work/qr.off"
+stderr_has "vertices removed after the quadtree"
+if [ "$(sed -n 2p "$work/qr.off" | cut -d' ' -f2)" -lt "$(sed -n 2p "$work/q.off" | cut -d' ' -f2)" ]; then ok
+else bad "the removal pass left no fewer triangles"; fi
+expect 2 "$mrsv" mesh --max-error 5 --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "--remove-vertices"; one_line_stderr
 expect 0 "$mrsv" mesh --quiet --triangles 500 "$work/p.mrsv" "$work/t.obj"
 expect 0 "$mrsv" mesh --quiet --levels 2 --max-error 5 "$work/p.mrsv" "$work/l.obj"
 expect 2 "$mrsv" mesh "$work/p.mrsv" "$work/x.obj"; stderr_has "give --max-error"; one_line_stderr

@@ -60,12 +60,17 @@ struct QuadtreeOptions {
   ErrorBound threshold;
   uint64_t max_triangles = 0;  // > 0: search the threshold (spec 9.6)
   bool tile_borders = false;   // spec 9.5; kMaxError only, grids of at least 4 x 4
+  // spec 9.7 (kMaxError only): interior vertices removed after the tree while
+  // every triangle stays within E; 0.5 to 0.75 x insertion's triangles (D83).
+  bool remove_vertices = false;
 };
 
 // What the search of max_triangles settled on (null-safe to ignore).
 struct QuadtreeReport {
   ErrorBound threshold;  // the threshold the mesh was made with
   uint32_t rounds = 0;   // refinement rounds of the max-error tree (spec 9.4)
+  uint64_t vertices_removed = 0;  // by the vertex-removal pass (spec 9.7)
+  uint32_t removal_passes = 0;
 };
 
 // Meshes a 2-D field (at least 2 x 2 samples). `details` is required by the
