@@ -27,15 +27,19 @@ class Remover {
     vertex_.resize(3 * t_count);
     for (size_t t = 0; t < t_count; ++t)
       for (int k = 0; k < 3; ++k) vertex_[3 * t + k] = mesh->cells[t][k];
-    // Opposites: the corner facing a -> b meets the one facing b -> a.
-    std::vector<std::pair<uint64_t, uint32_t>> edges(vertex_.size());
-    for (uint32_t c = 0; c < vertex_.size(); ++c) edges[c] = {key(vertex_[next(c)], vertex_[prev(c)]), c};
-    std::sort(edges.begin(), edges.end());
+    // Opposites: the corner facing a -> b meets the one facing b -> a, found
+    // among the half-edges leaving b (grouped by their start, a counting sort).
+    const size_t v_count = mesh->points.size();
+    std::vector<uint32_t> start(v_count + 1, 0), leaving(vertex_.size());
+    for (uint32_t c = 0; c < vertex_.size(); ++c) ++start[vertex_[next(c)] + 1];
+    for (size_t v = 0; v < v_count; ++v) start[v + 1] += start[v];
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t c = 0; c < vertex_.size(); ++c) leaving[fill[vertex_[next(c)]]++] = c;
     opposite_.assign(vertex_.size(), kNone);
     for (uint32_t c = 0; c < vertex_.size(); ++c) {
-      const uint64_t twin = key(vertex_[prev(c)], vertex_[next(c)]);
-      const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(twin, uint32_t{0}));
-      if (it != edges.end() && it->first == twin) opposite_[c] = it->second;
+      const uint32_t a = vertex_[next(c)], b = vertex_[prev(c)];
+      for (uint32_t k = start[b]; k < start[b + 1]; ++k)
+        if (vertex_[prev(leaving[k])] == a) opposite_[c] = leaving[k];
     }
     corner_of_.assign(mesh->points.size(), kNone);
     for (uint32_t c = 0; c < vertex_.size(); ++c) corner_of_[vertex_[c]] = c;
@@ -89,7 +93,6 @@ class Remover {
   }
 
  private:
-  static uint64_t key(uint32_t a, uint32_t b) { return uint64_t{a} << 32 | b; }
   const std::array<uint32_t, 3>& point(uint32_t v) const { return mesh_->points[v]; }
   bool before(uint32_t a, uint32_t b) const {
     return point(a)[1] != point(b)[1] ? point(a)[1] < point(b)[1] : point(a)[0] < point(b)[0];
