@@ -22,7 +22,7 @@ the reference agrees on both mask vectors). The masked positions are those where
 first copy holds the no-data value (a terrain sample never equals -32768).
 
   python3 conformance/reconstruct_reference.py IN.mrsv OUT --mrsv PATH/TO/mrsv
-      [--max-error E] [--triangles N] [--progressive] [--no-border-rule]
+      [--max-error E] [--triangles N] [--progressive] [--no-border-rule] [--remove-vertices]
       [--bytes N] [--levels K] [--canonical]
   writes the canonical output of 8.2 to OUT (--canonical is accepted and implied);
   refuses (exit 1, a message) what 8.1 and 8.7 refuse.
@@ -503,7 +503,7 @@ def parse_bound(text):
 
 
 def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, border=True, levels=0,
-                log=None):
+                log=None, remove=False):
     stream = Stream(data)
     if stream.sample_type not in INTEGER_TYPES:
         raise Refused(f"{TYPE_NAMES.get(stream.sample_type, '?')} samples: 8.1 accepts integer samples only")
@@ -515,6 +515,8 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, b
     bound = parse_bound(max_error) if max_error is not None else None
     if bound is None and triangles is None:
         raise Refused("give --max-error, --triangles or both")
+    if remove and (bound is None or progressive):
+        raise Refused("8.8: the vertex-removal pass needs --max-error and no --progressive")
     stages = stream.stages(levels)
     if not progressive:
         stages = stages[-1:]
@@ -534,6 +536,11 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, b
         mesh.check_delaunay()
         if log:
             log(f"stage s={s} end={end}: {len(mesh.rank)} vertices, {len(mesh.tris)} triangles")
+    if remove:  # 8.8: 9.7's pass, as quadtree_reference.py writes it from chapter 9
+        import quadtree_reference as qr
+        field = qr.Field(X, Y, mesh.values)
+        tris = [(mesh.xy(a), mesh.xy(b), mesh.xy(c)) for a, b, c in mesh.tris]
+        return qr.canonical(field, qr.remove_vertices(field, bound, tris))
     return mesh.canonical()
 
 
@@ -546,6 +553,7 @@ def main():
     parser.add_argument("--triangles", type=int)
     parser.add_argument("--progressive", action="store_true")
     parser.add_argument("--no-border-rule", action="store_true")
+    parser.add_argument("--remove-vertices", action="store_true")
     parser.add_argument("--bytes", type=int)
     parser.add_argument("--levels", type=int, default=0)
     parser.add_argument("--canonical", action="store_true", help="(implied)")
@@ -559,7 +567,7 @@ def main():
             raise Refused("--triangles must be a positive integer")
         out = reconstruct(data, args.mrsv, args.max_error, args.triangles, args.progressive,
                           not args.no_border_rule, args.levels,
-                          None if args.quiet else (lambda m: print(m, file=sys.stderr)))
+                          None if args.quiet else (lambda m: print(m, file=sys.stderr)), args.remove_vertices)
     except Refused as e:
         print(f"refused: {e}", file=sys.stderr)
         return 1

@@ -16,6 +16,9 @@ R9_REMOVAL = ["R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
 
 R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "R8.5-1", "R8.5-2", "R8.5-3", "R8.5-4", "R8.5-5", "R8.6-1", "R8.6-2"]
 
+# The vertex-removal pass after insertion (8.8) is chapter 9's (9.4's test, 9.7).
+R8_REMOVAL = ["R8.8-1", "R9.4-1"] + R9_REMOVAL
+
 RULES = {
     # --- container and stored grids (make_vectors.py) ---
     "smallest": ["R3.1-10"],
@@ -306,11 +309,12 @@ RULES = {
     # Every stream with reconstructions: the canonical output, the predicates, the
     # triangulation and the greedy insertion with bounds and limits (8.2 to 8.6).
     **{n: R8_MESH for n in ("coast33_stored", "grid_2x2_stored")},
-    "sh33_stored": R8_MESH + ["R8.7-1"],
+    "sh33_stored": R8_MESH + ["R8.7-1"] + R8_REMOVAL,
     **{n: R8_MESH + ["R8.7-1", "R8.7-2"] for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive",
-                                                  "bt65x49_maxerr2_progressive", "sh17x65_lossless", "grid_5x3_lossless")},
-    **{n: R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"]
-       for n in ("fuji33_mask_lossless_progressive", "fuji33_mask_psnr45_progressive")},
+                                                  "bt65x49_maxerr2_progressive", "grid_5x3_lossless")},
+    "sh17x65_lossless": R8_MESH + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
+    "fuji33_mask_lossless_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
+    "fuji33_mask_psnr45_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"],
     **{n: ["R8.1-2"] for n in ("float32_33x33_stored", "line_33_int16", "col_1x33_int16", "row_33x1_int16")},
 
     # --- mesh reconstruction of 3-D grids (reconstruct_vectors3.py; spec 10) ---

@@ -37,7 +37,8 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (!max_error && !triangles && !tets) throw py::value_error("give max_error=, triangles= or tets=");
   if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
   if (distance != "mesh" && distance != "trilinear") throw py::value_error("distance= must be 'mesh' or 'trilinear'");
-  if (remove_vertices && method != "quadtree") throw py::value_error("remove_vertices=True is for method='quadtree'");
+  if (remove_vertices && method == "insertion" && !max_error)
+    throw py::value_error("remove_vertices=True with method='insertion' needs max_error= (spec 8.8)");
   InsertionLimits limits;
   if (max_error) limits.max_error = errorBoundOf(*max_error);
   limits.max_cells = triangles ? *triangles : tets ? *tets : 0;
@@ -60,6 +61,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (dims == 3 && method == "quadtree") throw py::value_error("the quadtree meshes 2-D grids; use method='insertion'");
   if (dims == 2 && tets) throw py::value_error("a 2-D grid gives triangles: use triangles=");
   if (dims == 3 && triangles) throw py::value_error("a 3-D grid gives tets: use tets=");
+  if (dims == 3 && remove_vertices) throw py::value_error("remove_vertices=True is for 2-D grids");
   if (distance == "trilinear" && (dims == 2 || !max_error))
     throw py::value_error("distance='trilinear' is for 3-D grids with max_error=");
   // The finest stage the bytes and levels= allow (spec 8.7); not refined stage by stage.
@@ -91,6 +93,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
       TerrainInserter inserter(grid.header.size_x, grid.header.size_y);
       ok = inserter.refine(field, stage.shift, limits, &error);
       if (ok) inserter.mesh(&mesh);
+      if (ok && remove_vertices) ok = removeInnerVertices(field, limits.max_error, &mesh, nullptr, &error);
     } else if (ok) {
       VolumeInserter inserter(grid.header.size_x, grid.header.size_y, grid.header.size_z);
       inserter.setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
@@ -126,8 +129,8 @@ method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
 (spec 9; 2-D). Stop at max_error (every sample within it), or at triangles=
 (2-D) / tets= (3-D) cells. levels and bytes choose the stage as in decode;
 border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D), z_scale and
-remove_vertices (quadtree: the vertex-removal pass of spec 9.7) as the CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and
-origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
+remove_vertices (2-D: the vertex-removal pass of spec 9.7 and 8.8) as the
+CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
 (N,) float64 samples at the vertices).)doc");
 }
 

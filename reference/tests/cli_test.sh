@@ -249,7 +249,9 @@ expect 0 "$mrsv" mesh --method quadtree --max-error 5 --remove-vertices "$work/p
 stderr_has "vertices removed after the quadtree"
 if [ "$(sed -n 2p "$work/qr.off" | cut -d' ' -f2)" -lt "$(sed -n 2p "$work/q.off" | cut -d' ' -f2)" ]; then ok
 else bad "the removal pass left no fewer triangles"; fi
-expect 2 "$mrsv" mesh --max-error 5 --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "--remove-vertices"; one_line_stderr
+expect 0 "$mrsv" mesh --max-error 5 --remove-vertices "$work/p.mrsv" "$work/ir.obj"; stderr_has "vertices removed after insertion"
+expect 2 "$mrsv" mesh --max-error 5 --progressive --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "--remove-vertices"; one_line_stderr
+expect 2 "$mrsv" mesh --triangles 500 --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "needs --max-error"; one_line_stderr
 expect 0 "$mrsv" mesh --quiet --triangles 500 "$work/p.mrsv" "$work/t.obj"
 expect 0 "$mrsv" mesh --quiet --levels 2 --max-error 5 "$work/p.mrsv" "$work/l.obj"
 expect 2 "$mrsv" mesh "$work/p.mrsv" "$work/x.obj"; stderr_has "give --max-error"; one_line_stderr

@@ -39,10 +39,11 @@ const char kMeshHelp[] =
     "                        with at most N (quadtree)\n"
     "  --tets N              3-D: stop at N tets\n"
     "  --epsilon X           quadtree: the paper's wavelet criterion threshold\n"
-    "  --remove-vertices     quadtree with --max-error or --triangles: after the tree,\n"
-    "                        remove every inner vertex whose star can be re-triangulated\n"
-    "                        within E (spec 9.7): about 0.5 to 0.75 x insertion's\n"
-    "                        triangles, in 5 to 10 x the quadtree's time\n"
+    "  --remove-vertices     2-D: after the mesh, remove every inner vertex whose star\n"
+    "                        can be re-triangulated within E (spec 9.7; 8.8 after\n"
+    "                        insertion, which then needs --max-error and no\n"
+    "                        --progressive): 0.5 to 0.75 x insertion's triangles, for\n"
+    "                        2 to 8 x the time\n"
     "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
     "                        mesh (default; fewer tets at the same error, D62) or the\n"
     "                        paper's, to the trilinear interpolant of its cell\n"
@@ -115,8 +116,12 @@ int runMesh(int argc, char** argv) {
                 kExitUsage);
   if (req.method == "insertion" && args.has("epsilon"))
     return fail(cmd, "--epsilon is for --method quadtree", kExitUsage);
-  if (args.flag("remove-vertices") && (req.method != "quadtree" || args.has("epsilon")))
-    return fail(cmd, "--remove-vertices is for --method quadtree with --max-error or --triangles", kExitUsage);
+  const bool remove_vertices = args.flag("remove-vertices");
+  if (remove_vertices && req.method == "quadtree" && args.has("epsilon"))
+    return fail(cmd, "--remove-vertices needs --max-error or --triangles, not --epsilon", kExitUsage);
+  if (remove_vertices && req.method == "insertion" && (!req.limits.max_error.set() || req.progressive))
+    return fail(cmd, "--remove-vertices with --method insertion needs --max-error and no --progressive (spec 8.8)",
+                kExitUsage);
   uint64_t byte_limit = UINT64_MAX, levels = 0;
   if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
     return fail(cmd, "--bytes must be a whole number", kExitUsage);
@@ -147,6 +152,7 @@ int runMesh(int argc, char** argv) {
   if (dims == 2 && args.has("tets")) return fail(cmd, in + ": a 2-D grid gives triangles: use --triangles", kExitUsage);
   if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
   if (dims == 2 && args.has("distance")) return fail(cmd, in + ": --distance is for 3-D grids", kExitUsage);
+  if (dims == 3 && remove_vertices) return fail(cmd, in + ": --remove-vertices is for 2-D grids", kExitUsage);
   // spec 10.6: the paper's pass inserts what exceeds E; without E it has nothing to
   // compare with, and the mesh would silently be the `mesh` distance's.
   if (distance == "trilinear" && !args.has("max-error"))
@@ -179,6 +185,7 @@ int runMesh(int argc, char** argv) {
       volume = std::make_unique<VolumeInserter>(grid.header.size_x, grid.header.size_y, grid.header.size_z);
       volume->setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
     }
+    SampleField field;  // the last stage's, for the removal pass
     for (size_t k = 0; k < stages.size(); ++k) {
       DecodedGrid prefix;
       const DecodedGrid* source = &grid;
@@ -187,7 +194,6 @@ int runMesh(int argc, char** argv) {
           return reportError(cmd, in, e);
         source = &prefix;
       }
-      SampleField field;
       if (!sampleFieldFromGrid(*source, &field, &error)) return fail(cmd, in + ": " + error, kExitInvalidData);
       Progress progress("mesh", req.quiet);
       const uint64_t goal = req.limits.max_cells;
@@ -216,6 +222,12 @@ int runMesh(int argc, char** argv) {
     }
     if (terrain) terrain->mesh(&mesh);
     else volume->mesh(&mesh);
+    if (remove_vertices) {
+      uint64_t removed = 0;
+      if (!removeInnerVertices(field, req.limits.max_error, &mesh, &removed, &error))
+        return fail(cmd, in + ": " + error, kExitInvalidData);
+      if (!req.quiet) std::fprintf(stderr, "mrsv mesh: %llu vertices removed after insertion\n", (unsigned long long)removed);
+    }
   } else if (req.method == "quadtree") {
     // The quadtree is bottom-up (paper 4): one stage, the last.
     const uint64_t stage_bytes = stages.back().bytes;
@@ -241,7 +253,7 @@ int runMesh(int argc, char** argv) {
       qt.tile_borders = req.limits.max_error.set() && req.limits.border_rule && field.size[0] >= 4 && field.size[1] >= 4;
     }
     qt.max_triangles = req.limits.max_cells;
-    qt.remove_vertices = args.flag("remove-vertices");
+    qt.remove_vertices = remove_vertices;
     QuadtreeReport report;
     if (!quadtreeMesh(field, args.has("epsilon") ? &details : nullptr, qt, &mesh, &error, &report))
       return fail(cmd, in + ": " + error, kExitInvalidData);

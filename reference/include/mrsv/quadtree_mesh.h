@@ -80,4 +80,11 @@ bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
                   const QuadtreeOptions& options, GridMesh* out, std::string* error,
                   QuadtreeReport* report = nullptr);
 
+// The vertex-removal pass of spec 9.7 on any 2-D mesh of `field` whose
+// counter-clockwise triangles cover the grid, with bound E (spec 8.8: after
+// Delaunay insertion). Returns the vertices removed; false with `error` when
+// the mesh is not a 2-D mesh of the field's size or E is not set.
+bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, GridMesh* mesh,
+                         uint64_t* removed, std::string* error);
+
 }  // namespace mrsv

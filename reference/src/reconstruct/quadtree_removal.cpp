@@ -1,8 +1,11 @@
 // spec: 9.7 the vertex-removal pass.
 #include "reconstruct/quadtree_removal.h"
 
+#include "mrsv/quadtree_mesh.h"
+
 #include <algorithm>
 #include <array>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -234,3 +237,25 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, RemovalReport* report
 }
 
 }  // namespace mrsv::quadtree
+
+namespace mrsv {
+
+bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, GridMesh* mesh, uint64_t* removed,
+                         std::string* error) {
+  if (field.dims() != 2 || mesh->dims != 2 || mesh->size[0] != field.size[0] || mesh->size[1] != field.size[1] ||
+      field.size[0] < 2 || field.size[1] < 2) {
+    if (error) *error = "the vertex-removal pass takes a 2-D mesh of the field's grid";
+    return false;
+  }
+  if (!bound.set() || bound.den <= 0) {
+    if (error) *error = "the vertex-removal pass needs a maximum error";
+    return false;
+  }
+  const quadtree::ErrorTest test(field, bound);
+  quadtree::RemovalReport report;
+  quadtree::removeVertices(test, mesh, &report);
+  if (removed) *removed = report.removed;
+  return true;
+}
+
+}  // namespace mrsv
