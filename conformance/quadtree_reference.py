@@ -13,8 +13,8 @@ implemented"); the suite runs it on the --clause 9 cases without
 --epsilon (run_conformance.py --skip-args=--epsilon).
 
   python3 conformance/quadtree_reference.py IN.mrsv OUT --mrsv PATH/TO/mrsv --method quadtree
-      [--max-error E | --triangles N] [--no-border-rule] [--remove-vertices] [--bytes N] [--levels K]
-      [--canonical]
+      [--max-error E | --triangles N] [--no-border-rule] [--remove-vertices] [--region X0,Y0,X1,Y1]
+      [--bytes N] [--levels K] [--canonical]
 """
 import argparse
 import os
@@ -340,14 +340,21 @@ def canonical(field, tris):
     return bytes(out)
 
 
-def reconstruct(data, mrsv, max_error=None, triangles=None, border=True, levels=0, remove=False):
+def reconstruct(data, mrsv, max_error=None, triangles=None, border=True, levels=0, remove=False, region=None):
     stream = rr.Stream(data)
     if stream.sample_type not in rr.INTEGER_TYPES:
         raise Refused("float samples: 8.1 accepts integer samples only")
     if stream.num_dims != 2 or stream.sx < 2 or stream.sy < 2:
         raise Refused("9.1: a 2-D field of at least 2 x 2 samples")
-    end, _ = stream.stages(levels)[-1]
-    field = Field(stream.sx, stream.sy, rr.decode_samples(mrsv, data[:end], stream))
+    if region is not None:  # 8.1: the box's samples of the whole decode, one stage
+        if levels:
+            raise Refused("8.1: a region is meshed in one stage, without --levels")
+        box = rr.parse_region(region, stream.sx, stream.sy)
+        values = rr.crop(rr.decode_samples(mrsv, data, stream), stream.sx, box)
+        field = Field(box[2] - box[0], box[3] - box[1], values)
+    else:
+        end, _ = stream.stages(levels)[-1]
+        field = Field(stream.sx, stream.sy, rr.decode_samples(mrsv, data[:end], stream))
     bound = rr.parse_bound(max_error) if max_error is not None else None
     # mrsv mesh's options: the tile border rule with a maximum error and a grid of at least 4 x 4.
     tiles = border and bound is not None and field.W >= 4 and field.H >= 4
@@ -381,6 +388,7 @@ def main():
     parser.add_argument("--epsilon")
     parser.add_argument("--no-border-rule", action="store_true")
     parser.add_argument("--remove-vertices", action="store_true")
+    parser.add_argument("--region")
     parser.add_argument("--bytes", type=int)
     parser.add_argument("--levels", type=int, default=0)
     parser.add_argument("--canonical", action="store_true")
@@ -394,7 +402,7 @@ def main():
         data = data[:args.bytes]
     try:
         out = reconstruct(data, args.mrsv, args.max_error, args.triangles, not args.no_border_rule, args.levels,
-                          args.remove_vertices)
+                          args.remove_vertices, args.region)
     except Refused as e:
         print(f"refused: {e}", file=sys.stderr)
         return 1

@@ -143,7 +143,12 @@ def build(data_dir, mrsv):
                  ["--max-error", "1", "--no-border-rule", "--remove-vertices"],
                  ["--max-error", "5", "--triangles", "100", "--remove-vertices"],
                  ["!", "--max-error", "1", "--progressive", "--remove-vertices"],
-                 ["!", "--triangles", "50", "--remove-vertices"]]))
+                 ["!", "--triangles", "50", "--remove-vertices"],
+                 ["--max-error", "5", "--region", "0,0,17,33"], ["--max-error", "5", "--region", "16,0,33,33"],
+                 ["--max-error", "2", "--region", "16,0,33,33", "--remove-vertices"],
+                 ["--triangles", "40", "--region", "3,5,20,31", "--no-border-rule"],
+                 ["!", "--max-error", "5", "--region", "0,0,34,33"],
+                 ["!", "--max-error", "5", "--region", "0,0,17,33", "--progressive"]]))
     ll = encode(mrsv, sh33, (33, 33), ["--progressive", "--lossless"])
     bands = chunk_ends(ll, b"GBND")
     stream = rr.Stream(ll)
@@ -243,6 +248,8 @@ def rules_of_case(args, stream, refused):
             return ["R8.1-2"]
         if "--remove-vertices" in args:
             return ["R8.8-1"]
+        if "--region" in args:
+            return ["R8.1-3"]
         if "--levels" in args or "--bytes" in args:
             return ["R8.7-1"]
         return ["R8.5-2"]
@@ -258,6 +265,8 @@ def rules_of_case(args, stream, refused):
         tags += ["R8.7-1", "R8.7-2"]
     if "--remove-vertices" in args:
         tags += ["R8.8-1"] + ["R9.4-1", "R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    if "--region" in args:
+        tags.append("R8.1-3")
     return tags
 
 

@@ -167,7 +167,10 @@ def build9(data_dir, mrsv):
                  ["--triangles", "1"], ["!", "--epsilon", "10"],
                  ["--max-error", "5", "--remove-vertices"], ["--max-error", "0", "--remove-vertices"],
                  ["--max-error", "2.5", "--no-border-rule", "--remove-vertices"],
-                 ["--triangles", "100", "--remove-vertices"], ["!", "--epsilon", "10", "--remove-vertices"]]))
+                 ["--triangles", "100", "--remove-vertices"], ["!", "--epsilon", "10", "--remove-vertices"],
+                 ["--max-error", "5", "--region", "16,0,33,33"],
+                 ["--max-error", "5", "--region", "0,0,17,33", "--remove-vertices"],
+                 ["!", "--epsilon", "10", "--region", "0,0,17,33"]]))
     out.append(("qt_sh33_bspline_lossless_progressive",
                 enc(mrsv, sh33, (33, 33), ["--progressive", "--lossless", "--wavelet", "bspline"]),
                 f"lossless progressive 33x33 int16 (linear B-splines, bands and residual) of {where}",
@@ -258,6 +261,8 @@ def rules9(args, stream, refused):
         tags.append("R9.6-1")
     if "--remove-vertices" in args:
         tags += ["R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    if "--region" in args:
+        tags.append("R8.1-3")
     return tags
 
 

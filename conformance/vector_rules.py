@@ -19,6 +19,12 @@ R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "
 # The vertex-removal pass after insertion (8.8) is chapter 9's (9.4's test, 9.7).
 R8_REMOVAL = ["R8.8-1", "R9.4-1"] + R9_REMOVAL
 
+
+def _in_order(tags):
+    """Tags sorted as the generators list them (R8.1-3 before R8.2-1, R9.10 after R9.9)."""
+    return sorted(tags, key=lambda t: [int(x) for x in t[1:].replace("-", ".").split(".")])
+
+
 RULES = {
     # --- container and stored grids (make_vectors.py) ---
     "smallest": ["R3.1-10"],
@@ -309,7 +315,7 @@ RULES = {
     # Every stream with reconstructions: the canonical output, the predicates, the
     # triangulation and the greedy insertion with bounds and limits (8.2 to 8.6).
     **{n: R8_MESH for n in ("coast33_stored", "grid_2x2_stored")},
-    "sh33_stored": R8_MESH + ["R8.7-1"] + R8_REMOVAL,
+    "sh33_stored": _in_order(R8_MESH + ["R8.1-3", "R8.7-1"] + R8_REMOVAL),
     **{n: R8_MESH + ["R8.7-1", "R8.7-2"] for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive",
                                                   "bt65x49_maxerr2_progressive", "grid_5x3_lossless")},
     "sh17x65_lossless": R8_MESH + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
@@ -327,7 +333,7 @@ RULES = {
     # --- quadtree reconstruction (reconstruct_vectors3.py; spec 9; hashes from the reference) ---
     **{n: R9_QUADTREE for n in ("qt_sh33_bspline_lossless_progressive", "qt_sh33_cdf97_lossless_progressive")},
     "qt_bt65x49_bspline_psnr40": R9_QUADTREE + R9_REMOVAL,
-    "qt_sh33_stored": R9_QUADTREE[:5] + ["R9.1-1"] + R9_QUADTREE[8:] + R9_REMOVAL,
+    "qt_sh33_stored": _in_order(R9_QUADTREE[:5] + ["R8.1-3", "R9.1-1"] + R9_QUADTREE[8:] + R9_REMOVAL),
     "qt_sh17x65_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:] + R9_REMOVAL,
     "qt_grid_3x3_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3] + R9_REMOVAL,
     "qt_grid_2x2_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3],

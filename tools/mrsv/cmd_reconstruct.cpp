@@ -11,6 +11,7 @@
 #include "mrsv/grid_mesh.h"
 #include "mrsv/mesh_formats.h"
 #include "mrsv/quadtree_mesh.h"
+#include "mrsv/tiled_grid.h"
 #include "mrsv/terrain_insertion.h"
 #include "mrsv/volume_insertion.h"
 #include "mrsv/tet_formats.h"
@@ -56,6 +57,10 @@ const char kMeshHelp[] =
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived\n"
     "  --levels K            use the stream without its K finest levels\n"
+    "  --region X0,Y0[,Z0],X1,Y1[,Z1]\n"
+    "                        mesh only the samples of this half-open box (a tiled\n"
+    "                        stream reads only the tiles it touches; spec 8.1): two\n"
+    "                        boxes sharing a side meet without cracks (border rule)\n"
     "  --z-scale S           2-D: heights are sample x S (default 1)\n"
     "  --canonical           write the canonical output of spec 8.2 instead of a mesh\n"
     "  --quiet               no progress or summary on stderr\n"
@@ -83,7 +88,7 @@ int runMesh(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance"},
+                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance", "region"},
                    {"progressive", "no-border-rule", "remove-vertices", "canonical", "quiet", "help"},
                    {}},
                   &error))
@@ -122,6 +127,12 @@ int runMesh(int argc, char** argv) {
   if (remove_vertices && req.method == "insertion" && (!req.limits.max_error.set() || req.progressive))
     return fail(cmd, "--remove-vertices with --method insertion needs --max-error and no --progressive (spec 8.8)",
                 kExitUsage);
+  GridRegion region;
+  const bool by_region = args.has("region");
+  if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
+  if (by_region && (req.progressive || args.has("levels") || args.has("epsilon")))
+    return fail(cmd, "--region meshes the region's samples once: not with --progressive, --levels or --epsilon",
+                kExitUsage);
   uint64_t byte_limit = UINT64_MAX, levels = 0;
   if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
     return fail(cmd, "--bytes must be a whole number", kExitUsage);
@@ -144,7 +155,20 @@ int runMesh(int argc, char** argv) {
     options.container.allow_partial_tail = true;
   }
   DecodedGrid grid;
-  if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) return reportError(cmd, in, e);
+  if (by_region) {
+    // spec 8.1: the field is the region decode's (11.5), a grid of the box's sizes.
+    MemoryByteSource source(bytes.data(), bytes.size());
+    if (Error e = decodeGridRegion(source, region, options, &grid); !e.ok()) {
+      if (e.status == Status::kInvalidArgument)
+        return fail(cmd, in + ": --region " + args.value("region") + ": " + e.message, kExitUsage);
+      return reportError(cmd, in, e);
+    }
+    grid.header.size_x = grid.output_size[0];
+    grid.header.size_y = grid.output_size[1];
+    grid.header.size_z = grid.output_size[2];
+  } else if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) {
+    return reportError(cmd, in, e);
+  }
   if (!grid.has_samples) return fail(cmd, in + ": the stream holds no samples yet (no band in the bytes read)", kExitInvalidData);
   const int dims = grid.header.num_dims;
   if (dims == 3 && req.method == "quadtree")
@@ -163,7 +187,9 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, out + ": a 3-D grid gives a tet mesh: write .vtu, .vtk, .mesh or .node", kExitUsage);
 
   // spec 8.7: the stages, less the K finest levels.
-  std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size(), unsigned(levels));
+  std::vector<ReconstructionStage> stages =
+      by_region ? std::vector<ReconstructionStage>{{bytes.size(), 0}}
+                : reconstructionStages(grid, bytes.size(), unsigned(levels));
   if (stages.empty() && grid.header.coding == GridCoding::kTiled)
     return fail(cmd, in + ": --levels is not defined for tiled grids in this version (spec 8.7 stages are the "
                           "levels of one wavelet pyramid); mesh the whole grid or decode --levels first",
@@ -276,6 +302,8 @@ int runMesh(int argc, char** argv) {
     geometry.z_scale = z_scale;
     if (!gridMeshGeometryFromMetadata(grid.metadata, dims, &geometry, &error))
       return fail(cmd, in + ": " + error, kExitInvalidData);
+    if (by_region)  // positions in the whole grid's frame, so that adjacent regions meet
+      for (int a = 0; a < 3; ++a) geometry.origin[a] += double(region.lo[a]) * geometry.spacing[a];
     if (dims == 2) {
       TriangleMesh tin = gridMeshToTriangles(mesh, geometry);
       if (out.size() < 4 || out.compare(out.size() - 4, 4, ".ply") != 0) tin.scalars.clear();
