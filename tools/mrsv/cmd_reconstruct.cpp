@@ -145,8 +145,16 @@ int runMesh(int argc, char** argv) {
   const std::string distance = args.has("distance") ? args.value("distance") : "mesh";
   if (distance != "mesh" && distance != "trilinear") return fail(cmd, "--distance must be mesh or trilinear", kExitUsage);
 
+  // A region of a whole file reads through the file (a tiled stream: the tiles
+  // the box touches); anything else reads the bytes first.
   std::vector<uint8_t> bytes;
-  if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
+  std::unique_ptr<ByteSource> file_source;
+  if (by_region && !args.has("bytes")) {
+    file_source = openFileByteSource(in, &error);
+    if (!file_source) return fail(cmd, in + ": " + error, kExitIo);
+  } else if (!readWholeFile(in, &bytes, &error)) {
+    return fail(cmd, in + ": " + error, kExitIo);
+  }
   DecodeOptions options;
   options.void_values = true;
   if (byte_limit < bytes.size()) {
@@ -157,7 +165,8 @@ int runMesh(int argc, char** argv) {
   DecodedGrid grid;
   if (by_region) {
     // spec 8.1: the field is the region decode's (11.5), a grid of the box's sizes.
-    MemoryByteSource source(bytes.data(), bytes.size());
+    MemoryByteSource memory(bytes.data(), bytes.size());
+    ByteSource& source = file_source ? *file_source : memory;
     if (Error e = decodeGridRegion(source, region, options, &grid); !e.ok()) {
       if (e.status == Status::kInvalidArgument)
         return fail(cmd, in + ": --region " + args.value("region") + ": " + e.message, kExitUsage);
