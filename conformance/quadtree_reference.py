@@ -259,6 +259,9 @@ def mesh(field, bound, tile_borders):
     return tris
 
 
+MAX_LINK = 64  # 9.7: a vertex whose link polygon has more points stays
+
+
 def remove_vertices(field, bound, tris):
     """9.7: every inner vertex whose link polygon clips into ears within E leaves, pass after pass."""
     W, H = field.W, field.H
@@ -281,7 +284,7 @@ def remove_vertices(field, bound, tris):
         P = [start]
         while link[P[-1]] != start:
             P.append(link[P[-1]])
-        if len(P) > 64:  # 9.7: a larger star stays
+        if len(P) > MAX_LINK:  # 9.7: a larger star stays
             return None
         T = []
         while len(P) > 3:

@@ -212,6 +212,19 @@ def build9(data_dir, mrsv):
                 "stored 5x4 int16, the smallest shapes with the tile border rule: Mt St Helens rows 100-103, "
                 "cols 150-154",
                 [["--max-error", "0"], ["--max-error", "3"]]))
+    # 9.7's bound on a link: a flat field with a rough left column; at E = 1 the
+    # border rule puts most of the column's points in the mesh, and after the
+    # first removals a vertex next to it has a link of more than 64 points.
+    edge = [0] * (100 * 100)
+    for y in range(100):
+        edge[100 * y] = (31 * y * y + 17 * y) % 13 - 6
+    out.append(("qt_flat100_rough_edge_lossless",
+                enc(mrsv, struct.pack("<%dh" % len(edge), *edge), (100, 100), ["--lossless"]),
+                "lossless 100x100 int16, synthetic: 0 everywhere but x = 0, where v(0, y) = (31 y^2 + 17 y) mod 13 "
+                "- 6; with --remove-vertices at E = 1 a link reaches more than 64 points (9.7), which changes the "
+                "mesh (without the bound: 124 vertices, 123 triangles)",
+                [["--max-error", "1"], ["--max-error", "1", "--remove-vertices"],
+                 ["--max-error", "1", "--no-border-rule", "--remove-vertices"]]))
     floats = struct.pack("<%df" % (33 * 33), *struct.unpack("<%dh" % (33 * 33), sh33))
     out.append(("qt_float32_33x33_stored", enc(mrsv, floats, (33, 33), ["--coding", "stored"], "float32"),
                 f"stored 33x33 float32 (the int16 values of {where}): float samples are refused",

@@ -337,6 +337,7 @@ RULES = {
     "qt_sh17x65_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:] + R9_REMOVAL,
     "qt_grid_3x3_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3] + R9_REMOVAL,
     "qt_grid_2x2_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3],
+    "qt_flat100_rough_edge_lossless": R9_QUADTREE[:5] + R9_QUADTREE[8:-1] + R9_REMOVAL,
     "qt_grid_5x4_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-1],
     **{n: ["R9.1-1"] for n in ("qt_float32_33x33_stored", "qt_col_1x33_stored", "qt_head5_stored")},
 }

@@ -81,8 +81,9 @@ bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
                   QuadtreeReport* report = nullptr);
 
 // The vertex-removal pass of spec 9.7 on any 2-D mesh of `field` whose
-// counter-clockwise triangles cover the grid, with bound E (spec 8.8: after
-// Delaunay insertion). Returns the vertices removed; false with `error` when
+// counter-clockwise triangles tile the grid's rectangle, each edge in two
+// triangles or on the border (a mesh the reconstructors make; other meshes
+// are not checked), with bound E (spec 8.8: after Delaunay insertion). Returns the vertices removed; false with `error` when
 // the mesh is not a 2-D mesh of the field's size or E is not set.
 bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, GridMesh* mesh,
                          uint64_t* removed, std::string* error);

@@ -14,7 +14,7 @@ namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 // spec 9.7: a star larger than this is left alone. It bounds the ear search,
-// cubic in the link's size; no tree vertex comes near it.
+// cubic in the link's size.
 constexpr size_t kMaxLink = 64;
 
 uint32_t next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
@@ -66,6 +66,7 @@ class Remover {
       c = next(across);
     } while (c != c0);
     const size_t n = poly_.size();
+    if (n < 3) return false;  // not a closed fan: a caller's mesh that is not a triangulation
     // The polygon starts at its smallest point in (y, x) order.
     size_t first = 0;
     for (size_t i = 1; i < n; ++i)

@@ -24,6 +24,10 @@ Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k)
 // the samples g of the region with g a multiple of 2^levels on every axis.
 void regionOutputSize(const GridRegion& region, int levels, uint32_t size[3]);
 
+// spec 11.6: a decode reduced by `levels` needs tile sizes that are multiples
+// of 2^levels on every axis with more than one tile; the error, or none.
+Error reducedLatticeError(const TileGrid& tiles, int levels);
+
 // Every tile has at least one band chunk, so that a decode gives samples.
 bool everyTileHasABand(const std::vector<TileJob>& jobs);
 

@@ -16,8 +16,9 @@ namespace {
 
 // Rows of tiles decoded at once. The threads take the tiles in file order
 // across the end of a row, so that no thread waits for a row's slowest tile
-// (a barrier per row held 2 threads to 1.68x on rows of 16 small bricks), and
-// the memory stays at this many rows besides the one being written.
+// (a barrier per row held 2 threads to 1.68x on rows of 16 small bricks). The
+// memory is these rows' buffers and what options.tile_rows holds (the tool's
+// writer: one row queued, one being written).
 constexpr uint64_t kRowsInFlight = 2;
 
 // The output of one row of tiles while its tiles decode.
@@ -34,17 +35,21 @@ struct RowSlot {
 // lowest tile's). Rows after an error still decode, for their errors only.
 Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, uint64_t end_offset,
                      const GridRegion& whole, const DecodeOptions& options, DecodedGrid* out) {
-  // Rows along the slowest axis with more than one tile: a contiguous run of
-  // tile numbers and of output samples.
-  int axis = 0;
-  for (int a = 0; a < 3; ++a)
-    if (tiles.count[a] > 1) axis = a;
-  uint64_t per_row = 1;
-  for (int a = 0; a < axis; ++a) per_row *= tiles.count[a];
   const int levels = options.reduce_levels;
+  if (Error e = reducedLatticeError(tiles, levels); !e.ok()) return e;
   const size_t sample_bytes = sampleSize(tiles.grid.sample_type);
   uint32_t out_size[3];
   regionOutputSize(whole, levels, out_size);
+  // Rows of tiles along the last axis with more than one tile or more than one
+  // output position: every axis above it has one tile and one position at
+  // most, so that a row is a contiguous run of tile numbers and of output
+  // samples (one tile along it: one row of every tile; a row reduced to no
+  // position along it hands over nothing).
+  int axis = 0;
+  for (int a = 0; a < 3; ++a)
+    if (tiles.count[a] > 1 || out_size[a] > 1) axis = a;
+  uint64_t per_row = 1;
+  for (int a = 0; a < axis; ++a) per_row *= tiles.count[a];
   const uint64_t out_bytes = uint64_t{out_size[0]} * out_size[1] * out_size[2] * sample_bytes;
   const bool all_have_bands = everyTileHasABand(jobs);
   if (all_have_bands)
@@ -66,6 +71,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
   RowSlot slots[kRowsInFlight];
   uint64_t next = 0, handed = 0;  // the next tile to take, the rows handed over
   bool handing = false, any_error = false, has_samples = all_have_bands, write_failed = false, stop = false;
+  bool out_of_memory = false;
   std::exception_ptr failure;
 
   const uint64_t rows = tiles.count[axis];
@@ -84,7 +90,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
     }
   } catch (const std::bad_alloc&) {
     const ChunkView& last = jobs.back().chunks.back();
-    return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(), "cannot allocate two rows of tiles"};
+    return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(), "out of memory for the rows of tiles"};
   }
 
   // Called with `held` locked by the thread that completed a tile: hands over
@@ -107,7 +113,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
         const uint32_t first = static_cast<uint32_t>((uint64_t{region.lo[axis]} + step - 1) / step);
         uint32_t size[3];
         regionOutputSize(region, levels, size);
-        written = options.tile_rows(axis, first, size[axis], slot.samples);
+        if (size[axis] > 0) written = options.tile_rows(axis, first, size[axis], slot.samples);
       }
       if (reuse < rows) sizeSlot(slot, reuse);
       held.lock();
@@ -115,6 +121,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
       slot.row = reuse;
       slot.tiles_done = 0;
       ++handed;
+      moved.notify_all();  // the next row's tiles may start while this thread hands over more
     }
     handing = false;
     moved.notify_all();
@@ -151,7 +158,12 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
         ++slot.tiles_done;
         handOver(held);
       }
-    } catch (...) {  // std::bad_alloc: the other threads stop at their next tile
+    } catch (const std::bad_alloc&) {  // the other threads stop at their next tile
+      if (!held.owns_lock()) held.lock();
+      out_of_memory = stop = true;
+      handing = false;
+      moved.notify_all();
+    } catch (...) {
       if (!held.owns_lock()) held.lock();
       if (!failure) failure = std::current_exception();
       stop = true;
@@ -164,11 +176,17 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
               [&](uint64_t) { work(); });
   if (failure) std::rethrow_exception(failure);
   out->samples.clear();
+  // A failed write stops the decode, so the tiles' errors after it are not all
+  // known: it is the answer, as when rows were decoded one after another.
+  if (write_failed) return Error{Status::kIoError, 0, "output", "the decoded rows could not be written"};
+  if (out_of_memory) {
+    const ChunkView& last = jobs.back().chunks.back();
+    return Error{Status::kResourceLimit, last.offset, last.chunk_type.str(), "out of memory for the rows of tiles"};
+  }
   const Error* first = nullptr;
   for (const Error& e : errors)
     if (!e.ok() && (first == nullptr || e.offset < first->offset)) first = &e;
   if (first != nullptr) return *first;
-  if (write_failed) return Error{Status::kIoError, 0, "output", "the decoded rows could not be written"};
   out->has_samples = has_samples;
   if (has_samples) std::copy(out_size, out_size + 3, out->output_size);
   return {};

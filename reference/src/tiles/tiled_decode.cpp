@@ -89,6 +89,18 @@ Error decodeTileJob(const TileGrid& tiles, const TileJob& job, bool complete, ui
   return decodeWaveletGrid(options, tile);
 }
 
+Error reducedLatticeError(const TileGrid& tiles, int levels) {
+  // spec 11.6: a reduced decode takes every 2^K-th sample of the grid, which
+  // each tile can supply only when its origin is on that lattice.
+  for (int a = 0; a < tiles.grid.num_dims && levels > 0; ++a) {
+    if (tiles.count[a] > 1 && (levels >= 31 || tiles.tiling.tile_size[a] % (1u << levels) != 0))
+      return Error{Status::kInvalidArgument, 0, "reduce_levels",
+                   "a tiled grid reduced by " + std::to_string(levels) +
+                       " levels needs tile sizes that are multiples of 2^" + std::to_string(levels)};
+  }
+  return {};
+}
+
 Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k) {
   if (chunk.chunk_type == kChunkMeta || !chunk.chunk_type.critical())
     return orderError(chunk, "tile chunk " + std::to_string(k) + " of " + std::to_string(index.totalChunks()) +
@@ -113,14 +125,7 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
                   uint64_t end_offset, const GridRegion& region, const DecodeOptions& options,
                   DecodedGrid* out) {
   const int levels = options.reduce_levels;
-  // spec 11.6: a reduced decode takes every 2^K-th sample of the grid, which
-  // each tile can supply only when its origin is on that lattice.
-  for (int a = 0; a < tiles.grid.num_dims && levels > 0; ++a) {
-    if (tiles.count[a] > 1 && (levels >= 31 || tiles.tiling.tile_size[a] % (1u << levels) != 0))
-      return Error{Status::kInvalidArgument, 0, "reduce_levels",
-                   "a tiled grid reduced by " + std::to_string(levels) +
-                       " levels needs tile sizes that are multiples of 2^" + std::to_string(levels)};
-  }
+  if (Error e = reducedLatticeError(tiles, levels); !e.ok()) return e;
   const size_t sample_bytes = sampleSize(tiles.grid.sample_type);
   const bool all_have_bands = everyTileHasABand(jobs);
   uint32_t out_size[3];
