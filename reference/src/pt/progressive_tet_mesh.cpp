@@ -21,11 +21,11 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uin
     return problem;
   walk_global.clear();
   for (uint32_t local : walk_local) walk_global.push_back(link_of_vs.vertices[local]);
-  mesh.incident.emplace_back();
+  mesh.incident.addVertex();
   std::string problem = applySplit(&mesh, vs, vt, walk_global.data(), static_cast<uint32_t>(walk_global.size()),
                                    closed, region.data(), static_cast<uint32_t>(region.size()));
   if (!problem.empty()) {
-    mesh.incident.pop_back();
+    mesh.incident.removeLastVertex();
     return problem;
   }
   recordSplit(vs, closed);
@@ -34,10 +34,10 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uin
 
 std::string ProgressiveTetMesh::Impl::applyDecodedSplit(uint32_t vs, bool closed) {
   const uint32_t vt = mesh.vertexCount() - 1;
-  mesh.incident.emplace_back();
+  mesh.incident.addVertex();
   std::string problem = applyStarSplit(&mesh, star_link, vt, walk_local, closed, &scratch, &region, &walk_global);
   if (!problem.empty()) {
-    mesh.incident.pop_back();
+    mesh.incident.removeLastVertex();
     return problem;
   }
   recordSplit(vs, closed);

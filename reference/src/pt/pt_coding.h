@@ -272,7 +272,7 @@ std::string codeBaseMesh(Coder& coder, PtContexts& ctx, const PtHeader& h, TetCo
 }
 
 inline int flagContext(const TetComplex& mesh, uint32_t v) {
-  return static_cast<int>(std::min<size_t>(mesh.incident[v].size() / 2, kFlagContexts - 1));
+  return static_cast<int>(std::min<size_t>(mesh.incident.size(v) / 2, kFlagContexts - 1));
 }
 
 }  // namespace mrsv::pt

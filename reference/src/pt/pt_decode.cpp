@@ -29,7 +29,7 @@ uint64_t memoryNeeded(const PtHeader& h) {
 // spec 7.7 one split record: the cut, then vt's position and values.
 std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTetMesh::Impl& s, uint32_t vs) {
   const PtHeader& h = s.header;
-  if (s.mesh.incident[vs].size() > 3 * size_t{kMaxSplitLinkVertices})
+  if (s.mesh.incident.size(vs) > 3 * size_t{kMaxSplitLinkVertices})
     return "the star of vs has more tets than a link of " + std::to_string(kMaxSplitLinkVertices) + " vertices can hold";
   s.star_link.build(s.mesh, vs);
   if (s.star_link.vertices.size() > kMaxSplitLinkVertices)

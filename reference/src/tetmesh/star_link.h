@@ -41,7 +41,7 @@ struct StarLink {
   std::vector<uint32_t> vertices;                  // vertex numbers, in the order the star meets them
   std::vector<std::array<uint32_t, 3>> triangles;  // local indices, Link's order
   std::vector<uint32_t> triangle_tet;              // the tet slot of each triangle
-  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
+  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle (set only when has_boundary)
   bool has_boundary = false;
 
   // The triangle holding the directed edge a -> b (written (a, b, ...)), or -1.
@@ -111,9 +111,9 @@ struct StarLink {
   bool dense_used_ = false;
   std::vector<uint32_t> dense_;  // per a * kDense + b: denseEntry() when a -> b is an edge of this build
   uint32_t edge_stamp_ = 0;      // 16 bits: dense_ is cleared when it wraps
-  // Scratch of build(): per vertex number, its local index while its stamp
-  // is the current one.
-  std::vector<uint32_t> local_of_, stamp_of_;
+  // Scratch of build(): per vertex number, the stamp of the last build that
+  // met it (high 32 bits) and its local index there.
+  std::vector<uint64_t> tag_of_;
   std::vector<uint32_t> gathered_;  // the link's vertices in the order first met
   uint32_t stamp_ = 0;
 };

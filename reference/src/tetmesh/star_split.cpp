@@ -1,6 +1,8 @@
 // spec: 7.6.3 the region of a cut, 7.6.4 applying a split, for the decoder.
 #include "tetmesh/star_split.h"
 
+#include <algorithm>
+
 namespace mrsv {
 
 std::string applyStarSplit(TetComplex* mesh, const StarLink& link, uint32_t vt, const std::vector<uint32_t>& walk,
@@ -93,32 +95,33 @@ std::string applyStarSplit(TetComplex* mesh, const StarLink& link, uint32_t vt, 
   // Step 2, as applySplit() does it.
   std::vector<Tet>& tets = mesh->tets;
   const uint32_t first_new = static_cast<uint32_t>(tets.size());
-  std::vector<uint32_t>& star_vs = mesh->incident[vs];
-  std::vector<uint32_t>& star_vt = mesh->incident[vt];
+  IncidenceLists& incident = mesh->incident;
   // vt's list is new: sized once for its moved and new tets and a few more,
   // so that the tets later splits give it seldom move it again.
-  star_vt.reserve(moved_count + edges + 4);
-  star_vt.assign(moved->begin(), moved->end());
+  incident.reserve(vt, moved_count + edges + 4);
+  std::copy_n(moved->data(), moved_count, incident.data(vt));
+  incident.resize(vt, moved_count);
   // Branch-free, as which corner is vs and which tets move are not predictable.
   for (uint32_t t : *moved) {
     Tet& c = tets[t];
     c[(c[1] == vs) + 2 * (c[2] == vs) + 3 * (c[3] == vs)] = vt;
   }
   // vs keeps the tets of the triangles the region did not mark, in order.
+  uint32_t* star_vs = incident.data(vs);
   uint32_t kept = 0;
-  for (uint32_t f = 0; f < star_vs.size(); ++f) {
+  for (uint32_t f = 0; f < faces; ++f) {
     star_vs[kept] = star_vs[f];
     kept += side[f] != 1;
   }
-  star_vs.resize(kept);
+  incident.resize(vs, kept);
   for (uint32_t i = 0; i < edges; ++i) {
     const uint32_t a = (*walk_global)[i], b = (*walk_global)[(i + 1) % k];
     const uint32_t slot = first_new + i;
     tets.push_back(Tet{vt, a, b, vs});
-    star_vs.push_back(slot);
-    star_vt.push_back(slot);
-    mesh->incident[a].push_back(slot);
-    mesh->incident[b].push_back(slot);
+    incident.push(vs, slot);
+    incident.push(vt, slot);
+    incident.push(a, slot);
+    incident.push(b, slot);
   }
   return "";
 }

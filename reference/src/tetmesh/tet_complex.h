@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tetmesh/exact_orient.h"
+#include "tetmesh/incidence_lists.h"
 
 namespace mrsv {
 
@@ -79,7 +80,7 @@ class TetComplex {
   std::vector<Point3i> positions;
   std::vector<int32_t> scalars;  // field_count per vertex
   std::vector<Tet> tets;
-  std::vector<std::vector<uint32_t>> incident;  // the tet slots of each vertex
+  IncidenceLists incident;  // the tet slots of each vertex
   // Every coordinate is in [0, 2^position_bits): set by a PT decoder, which
   // checks each decoded coordinate against it. At 20 or less orientation()
   // skips orient3d's per-call test of the 64-bit bound (issue 21's profile:
