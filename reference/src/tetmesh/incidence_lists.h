@@ -42,6 +42,11 @@ class IncidenceLists {
     list_.assign(n, List{});
     holes_ = 0;
   }
+  // Room for `vertices` lists and `entries` entries in all, without filling it.
+  void reserveTotal(uint32_t vertices, size_t entries) {
+    list_.reserve(vertices);
+    pool_.reserve(std::min<size_t>(entries, UINT32_MAX));
+  }
   // One more vertex, with an empty list.
   void addVertex() { list_.push_back(List{static_cast<uint32_t>(pool_.size()), 0, 0, 0}); }
   // Forgets the last vertex's list (its block becomes a hole).

@@ -68,6 +68,17 @@ struct StarLink {
   // The boundary vertices of the link, by ascending vertex number.
   void boundaryVertices(std::vector<uint32_t>* out) const;
 
+  // From now on there is no triangle holding a -> b (and a rotation through
+  // it fails): the region's flood (star_split.cpp) stops at the cut so.
+  void forgetEdge(uint32_t a, uint32_t b) {
+    if (dense_used_) {
+      dense_[a * kDense + b] = 0;  // the stamp 0 is never a build's
+      return;
+    }
+    const uint32_t e = findHashed(a, b);
+    if (e != kNone) edge_triangle_[e] = kNoTriangle;
+  }
+
   // Builds the link of v in `mesh` (its incidence lists), reusing storage.
   void build(const TetComplex& mesh, uint32_t v);
 

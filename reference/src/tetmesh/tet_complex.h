@@ -8,12 +8,30 @@
 #include <string>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "tetmesh/exact_orient.h"
 #include "tetmesh/incidence_lists.h"
 
 namespace mrsv {
 
 using Tet = std::array<uint32_t, 4>;
+
+// The corner of t that is v (0 when none is). Without a branch: which
+// corner a vertex is cannot be predicted, and gcc turns the plain sum of
+// comparisons into one (cachegrind on the CT crop: 5 mispredictions per
+// split in the link's build, 3 in the split).
+inline int cornerOf(const Tet& t, uint32_t v) {
+#if defined(__SSE2__)
+  const __m128i corners = _mm_loadu_si128(reinterpret_cast<const __m128i*>(t.data()));
+  const __m128i equal = _mm_cmpeq_epi32(corners, _mm_set1_epi32(static_cast<int>(v)));
+  return __builtin_ctz(static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(equal))) | 16u) & 3;
+#else
+  return (t[1] == v) + 2 * (t[2] == v) + 3 * (t[3] == v);
+#endif
+}
 
 // spec 7.6.1: the link triangle of the corner at position i of a positive tet
 // (a, b, c, d): the other three corners in the order that an even
