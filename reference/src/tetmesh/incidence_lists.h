@@ -94,9 +94,10 @@ class IncidenceLists {
     List& l = list_[v];
     const uint64_t to = pool_.size();
     extendPool(to + room);
-    uint32_t* from = pool_.data() + l.offset;
+    const uint32_t* from = pool_.data() + l.offset;
     uint32_t* into = pool_.data() + to;
-    for (uint32_t i = 0; i < l.size; ++i) into[i] = from[i];
+    const uint32_t size = l.size;
+    for (uint32_t i = 0; i < size; ++i) into[i] = from[i];
     holes_ += l.capacity;
     l.offset = static_cast<uint32_t>(to);
     l.capacity = room;

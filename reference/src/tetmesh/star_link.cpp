@@ -72,6 +72,11 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   const uint64_t stamp = uint64_t{stamp_} << 32;
   bool fits = faces <= kDenseFaces;
   uint32_t m = 0;
+  // The star's tets lie anywhere in the mesh (most first-level cache
+  // misses of a split): asked for all at once, they arrive together, where
+  // the loop below, about 100 instructions a tet, waited for them one or
+  // two at a time (perf: 40 % of the build's time on the first use of the tet).
+  for (uint32_t f = 0; f < faces; ++f) __builtin_prefetch(&tets[star[f]]);
   for (uint32_t f = 0; f < faces; ++f) {
     const uint32_t slot = star[f];
     tet_of[f] = slot;
@@ -104,6 +109,14 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
     }
   }
   vertices.assign(gathered, gathered + m);
+  // cut() and the split read the positions and values of the link's
+  // vertices: asked for now, they come while the cut is decoded.
+  const Point3i* positions = mesh.positions.data();
+  for (uint32_t p = 0; p < m; ++p) __builtin_prefetch(&positions[gathered[p]]);
+  if (mesh.field_count > 0) {
+    const int32_t* scalars = mesh.scalars.data();
+    for (uint32_t p = 0; p < m; ++p) __builtin_prefetch(&scalars[size_t{gathered[p]} * mesh.field_count]);
+  }
   dense_used_ = fits;
   if (!dense_used_) buildHashed();
   // spec 7.3: every level's links are spheres or disks, and a sphere on m

@@ -97,7 +97,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   IncidenceLists& incident = mesh->incident;
   // vt's list is new: sized once for its moved and new tets and a few more,
   // so that the tets later splits give it seldom move it again.
-  incident.reserve(vt, moved_count + edges + 4);
+  incident.reserve(vt, 2 * (moved_count + edges));
   std::copy_n(moved->data(), moved_count, incident.data(vt));
   incident.resize(vt, moved_count);
   // Branch-free, as which corner is vs and which tets move are not predictable.
