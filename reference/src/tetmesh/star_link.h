@@ -63,6 +63,11 @@ struct StarLink {
   bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
   // rotation(p, its link neighbour of smallest vertex number): c_0's of 7.7.2.
   bool rotationFromLowest(uint32_t p, std::vector<uint32_t>* out) const;
+  // The same two for cut(): the rotation in the first entries of `out`,
+  // which only grows (no fill, no push_back per entry: callgrind had them
+  // at half the cost of the rotations), and its length, 0 when it fails.
+  uint32_t rotationInto(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
+  uint32_t rotationFromLowestInto(uint32_t p, std::vector<uint32_t>* out) const;
   // The local vertex of rank r (0 = the smallest vertex number), r < m.
   uint32_t localOfRank(uint32_t r) const;
   // The boundary vertices of the link, by ascending vertex number.

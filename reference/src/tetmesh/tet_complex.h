@@ -79,6 +79,12 @@ struct Link {
     return rotation(p, lowestNeighbour(p), out);
   }
   uint32_t localOfRank(uint32_t r) const { return r; }
+  uint32_t rotationInto(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const {
+    return rotation(p, start, out) ? static_cast<uint32_t>(out->size()) : 0;
+  }
+  uint32_t rotationFromLowestInto(uint32_t p, std::vector<uint32_t>* out) const {
+    return rotationFromLowest(p, out) ? static_cast<uint32_t>(out->size()) : 0;
+  }
   void boundaryVertices(std::vector<uint32_t>* out) const {
     out->clear();
     for (uint32_t p = 0; p < vertices.size(); ++p)
