@@ -20,7 +20,10 @@ std::string ProgressiveTetMesh::Impl::startFromBase() {
   moved.reserve(size_t{splits} * 12);
   cuts.reserve(size_t{splits} * 6);
   mesh.buildIncidence();
-  mesh.incident.reserveTotal(header.vertex_count, size_t{header.tet_count} * 4);
+  // The tet lists take about 8 entries per tet with their room to grow
+  // (CT crop): reserved so, the pool is not moved on the way, which cost a
+  // sixth more page faults (perf stat, pt_decode_bench).
+  mesh.incident.reserveTotal(header.vertex_count, size_t{header.tet_count} * 8);
   std::string problem = mesh.checkManifold();
   tet_count_after.clear();
   level = 0;
