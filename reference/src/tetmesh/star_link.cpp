@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cstddef>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace mrsv {
 
@@ -140,11 +143,25 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
 uint32_t StarLink::localOfRank(uint32_t r) const {
   // The vertex with r smaller ones, counted without branches on the data:
   // nth_element's comparisons mispredicted 21 times per split on the CT
-  // crop (cachegrind), which cost more than the 230 instructions per split
-  // that counting adds.
+  // crop (cachegrind). Where SSE2 is there, the counts of four candidates
+  // at a time, each vertex compared with all four at once (vertex numbers
+  // are below 2^28: signed comparisons order them): 540 -> 465
+  // instructions per split on the CT crop (callgrind).
   const uint32_t m = static_cast<uint32_t>(vertices.size());
   const uint32_t* v = vertices.data();
-  for (uint32_t i = 0; i < m; ++i) {
+  uint32_t i = 0;
+#if defined(__SSE2__)
+  const __m128i wanted = _mm_set1_epi32(static_cast<int>(r));
+  for (; i + 4 <= m; i += 4) {
+    const __m128i candidates = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v + i));
+    __m128i smaller = _mm_setzero_si128();
+    for (uint32_t j = 0; j < m; ++j)  // each smaller one subtracts -1
+      smaller = _mm_sub_epi32(smaller, _mm_cmplt_epi32(_mm_set1_epi32(static_cast<int>(v[j])), candidates));
+    const int hit = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(smaller, wanted)));
+    if (hit != 0) return i + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(hit)));
+  }
+#endif
+  for (; i < m; ++i) {
     uint32_t smaller = 0;
     for (uint32_t j = 0; j < m; ++j) smaller += v[j] < v[i];
     if (smaller == r) return i;
