@@ -55,6 +55,20 @@ struct StarLink {
     const uint32_t e = find(a, b);
     return e == kNone ? kNoTriangle : triangleOf(e);
   }
+  // triangleHolding() with the table's base and stamp held by the caller:
+  // in a loop that stores bytes (the region's flood) the compiler would
+  // reload both from the StarLink at every lookup.
+  struct Lookup {
+    const StarLink* link;
+    const uint32_t* dense;  // nullptr: the hashed table
+    uint32_t stamp;
+    uint32_t triangleHolding(uint32_t a, uint32_t b) const {
+      if (dense == nullptr) return link->triangleHolding(a, b);
+      const uint32_t e = dense[a * kDense + b];
+      return e >> 16 == stamp ? (e >> 8) & 0xFF : kNoTriangle;
+    }
+  };
+  Lookup lookup() const { return Lookup{this, dense_used_ ? dense_.data() : nullptr, edge_stamp_}; }
   // The triangle across the edge from triangle f's j-th vertex to its next
   // one (it holds that edge reversed), or -1 on the link's boundary.
   int64_t across(uint32_t f, int j) const { return triangleFrom(triangles[f][(j + 1) % 3], triangles[f][j]); }

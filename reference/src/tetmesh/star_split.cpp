@@ -50,8 +50,10 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   // predicted: no branch on either (a step not taken goes to triangle
   // `faces`, which stays on vt's side; cachegrind's branch simulation on the
   // CT crop: 24 mispredictions per split less).
+  const StarLink::Lookup table = link.lookup();
+  const std::array<uint32_t, 3>* triangles = link.triangles.data();
   auto step = [&](uint32_t a, uint32_t b) {
-    const uint32_t g = link.triangleHolding(b, a);
+    const uint32_t g = table.triangleHolding(b, a);
     const uint32_t to = g == kNo ? faces : g;
     const uint8_t was = side[to];
     if (was == 2) return false;
@@ -61,7 +63,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
     return true;
   };
   for (uint32_t q = 0; q < tail; ++q) {
-    const auto tri = link.triangles[queue[q]];
+    const auto tri = triangles[queue[q]];
     if (!step(tri[0], tri[1]) || !step(tri[1], tri[2]) || !step(tri[2], tri[0]))
       return "the cut does not separate the link";
   }
