@@ -106,7 +106,7 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
   std::vector<uint32_t> given;
   if (Coder::kEncoding) given = w;
   w.clear();
-  s->walk_position.assign(m, 0);
+  zeroedPrefix(&s->walk_position, m);
   auto visit = [&](uint32_t v) {
     s->walk_position[v] = 1;
     w.push_back(v);

@@ -20,8 +20,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   // first, each triangle's edges in corner order), so that the moved tets
   // come in its order; written out on raw arrays, as the generic flood's
   // signed triangle numbers and per-step lookups cost twice as much.
-  s->triangle_side.assign(faces + 1, 0);  // 0 unknown, 1 vt's, 2 vs's
-  uint8_t* side = s->triangle_side.data();
+  uint8_t* side = zeroedPrefix(&s->triangle_side, faces + 1);  // 0 unknown, 1 vt's, 2 vs's
   side[faces] = 1;  // where steps that are not taken go
   s->queue.resize(faces + 1);  // each triangle enters once, when its side turns 1 (+1: see step())
   uint32_t* queue = s->queue.data();
