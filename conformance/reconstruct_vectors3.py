@@ -164,7 +164,13 @@ def build9(data_dir, mrsv):
                 f"stored 33x33 int16 of {where}",
                 [["--max-error", "5"], ["--max-error", "5", "--no-border-rule"], ["--max-error", "0"],
                  ["--max-error", "20"], ["--max-error", "2.5", "--no-border-rule"], ["--triangles", "100"],
-                 ["--triangles", "1"], ["!", "--epsilon", "10"]]))
+                 ["--triangles", "1"], ["!", "--epsilon", "10"],
+                 ["--max-error", "5", "--remove-vertices"], ["--max-error", "0", "--remove-vertices"],
+                 ["--max-error", "2.5", "--no-border-rule", "--remove-vertices"],
+                 ["--triangles", "100", "--remove-vertices"], ["!", "--epsilon", "10", "--remove-vertices"],
+                 ["--max-error", "5", "--region", "16,0,33,33"],
+                 ["--max-error", "5", "--region", "0,0,17,33", "--remove-vertices"],
+                 ["!", "--epsilon", "10", "--region", "0,0,17,33"]]))
     out.append(("qt_sh33_bspline_lossless_progressive",
                 enc(mrsv, sh33, (33, 33), ["--progressive", "--lossless", "--wavelet", "bspline"]),
                 f"lossless progressive 33x33 int16 (linear B-splines, bands and residual) of {where}",
@@ -183,16 +189,20 @@ def build9(data_dir, mrsv):
                 f"lossy progressive (--psnr 40, linear B-splines) 65x49 int16 of {where_bt}: not square, "
                 "so part of the tree lies outside the grid",
                 [["--max-error", "10"], ["--max-error", "10", "--no-border-rule"], ["--epsilon", "50"],
-                 ["--epsilon", "50", "--bytes", str(bands[len(bands) // 2])], ["--triangles", "300"]]))
+                 ["--epsilon", "50", "--bytes", str(bands[len(bands) // 2])], ["--triangles", "300"],
+                 ["--max-error", "10", "--remove-vertices"], ["--max-error", "10", "--no-border-rule", "--remove-vertices"],
+                 ["--max-error", "4", "--levels", "1", "--remove-vertices"]]))
     sh17 = rv.crop(data_dir, "st_helens", 300, 40, 17, 65)
     out.append(("qt_sh17x65_stored", enc(mrsv, sh17, (17, 65), ["--coding", "stored"]),
                 "stored 17x65 int16 of Mt St Helens (mt_st_helens_317x460) rows 300-364, cols 40-56",
-                [["--max-error", "4"], ["--max-error", "4", "--no-border-rule"], ["--triangles", "64"]]))
+                [["--max-error", "4"], ["--max-error", "4", "--no-border-rule"], ["--triangles", "64"],
+                 ["--max-error", "4", "--remove-vertices"], ["--max-error", "1", "--no-border-rule", "--remove-vertices"]]))
     g3 = rv.crop(data_dir, "st_helens", 100, 150, 3, 3)
     out.append(("qt_grid_3x3_stored", enc(mrsv, g3, (3, 3), ["--coding", "stored"]),
                 "stored 3x3 int16 (Mt St Helens rows 100-102, cols 150-152): under 4 x 4, so mrsv mesh meshes it "
                 "without the tile border rule whether or not --no-border-rule is given",
-                [["--max-error", "0"], ["--max-error", "0", "--no-border-rule"], ["--max-error", "100"]]))
+                [["--max-error", "0"], ["--max-error", "0", "--no-border-rule"], ["--max-error", "100"],
+                 ["--max-error", "100", "--remove-vertices"]]))
     g2 = rv.crop(data_dir, "st_helens", 100, 150, 2, 2)
     out.append(("qt_grid_2x2_stored", enc(mrsv, g2, (2, 2), ["--coding", "stored"]),
                 "stored 2x2 int16, the smallest grid 9.1 accepts: Mt St Helens rows 100-101, cols 150-151",
@@ -249,6 +259,10 @@ def rules9(args, stream, refused):
             tags += ["R9.5-1", "R9.5-2"]
     if "--triangles" in args:
         tags.append("R9.6-1")
+    if "--remove-vertices" in args:
+        tags += ["R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    if "--region" in args:
+        tags.append("R8.1-3")
     return tags
 
 
