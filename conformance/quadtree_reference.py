@@ -281,6 +281,8 @@ def remove_vertices(field, bound, tris):
         P = [start]
         while link[P[-1]] != start:
             P.append(link[P[-1]])
+        if len(P) > 64:  # 9.7: a larger star stays
+            return None
         T = []
         while len(P) > 3:
             m = len(P)

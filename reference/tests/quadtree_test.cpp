@@ -215,6 +215,37 @@ TEST(Quadtree, RemovalPassKeepsTheBoundAndTheBorder) {
   }
 }
 
+// spec 9.7: a vertex whose link has more than 64 points stays. A flat n x n
+// grid meshed as a fan from its centre to every border point: the centre's
+// link is the border, 4 (n - 1) points, and every ear is within E = 0.
+TEST(Quadtree, RemovalLeavesStarsOfMoreThan64Points) {
+  for (uint32_t n : {17u, 19u}) {
+    SampleField flat;
+    flat.size[0] = flat.size[1] = n, flat.size[2] = 1;
+    flat.values.assign(size_t{n} * n, 3);
+    GridMesh fan;
+    fan.dims = 2;
+    fan.size[0] = fan.size[1] = n, fan.size[2] = 1;
+    std::vector<std::array<uint32_t, 3>> ring;  // the border, counter-clockwise
+    for (uint32_t x = 0; x + 1 < n; ++x) ring.push_back({x, 0, 0});
+    for (uint32_t y = 0; y + 1 < n; ++y) ring.push_back({n - 1, y, 0});
+    for (uint32_t x = n - 1; x > 0; --x) ring.push_back({x, n - 1, 0});
+    for (uint32_t y = n - 1; y > 0; --y) ring.push_back({0, y, 0});
+    fan.points = ring;
+    fan.points.push_back({n / 2, n / 2, 0});
+    fan.values.assign(fan.points.size(), 3);
+    const uint32_t centre = static_cast<uint32_t>(ring.size());
+    for (uint32_t k = 0; k < centre; ++k) fan.cells.push_back({centre, k, (k + 1) % centre, 0});
+    ASSERT_EQ(test::triangulationProblem(fan), "");
+    uint64_t removed = 0;
+    std::string error;
+    ASSERT_TRUE(removeInnerVertices(flat, ErrorBound{0, 1}, &fan, &removed, &error)) << error;
+    EXPECT_EQ(removed, ring.size() <= 64 ? 1u : 0u) << n;
+    EXPECT_EQ(test::triangulationProblem(fan), "");
+    EXPECT_EQ(fan.cells.size(), ring.size() <= 64 ? ring.size() - 2 : ring.size());
+  }
+}
+
 TEST(Quadtree, FractionalBoundAndFlatGrid) {
   const SampleField f = terrainWindow("mt_st_helens", 10, 20, 129, 65);
   QuadtreeOptions o;

@@ -13,8 +13,8 @@ namespace mrsv::quadtree {
 namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
-// A star larger than this is left alone: no quadtree vertex comes near it
-// (a leaf's polygon has at most 8 points), and it bounds the ear search.
+// spec 9.7: a star larger than this is left alone. It bounds the ear search,
+// cubic in the link's size; no tree vertex comes near it.
 constexpr size_t kMaxLink = 64;
 
 uint32_t next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
