@@ -124,9 +124,6 @@ int runMesh(int argc, char** argv) {
   const bool remove_vertices = args.flag("remove-vertices");
   if (remove_vertices && req.method == "quadtree" && args.has("epsilon"))
     return fail(cmd, "--remove-vertices needs --max-error or --triangles, not --epsilon", kExitUsage);
-  if (remove_vertices && req.method == "insertion" && (!req.limits.max_error.set() || req.progressive))
-    return fail(cmd, "--remove-vertices with --method insertion needs --max-error and no --progressive (spec 8.8)",
-                kExitUsage);
   GridRegion region;
   const bool by_region = args.has("region");
   if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
@@ -186,6 +183,9 @@ int runMesh(int argc, char** argv) {
   if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
   if (dims == 2 && args.has("distance")) return fail(cmd, in + ": --distance is for 3-D grids", kExitUsage);
   if (dims == 3 && remove_vertices) return fail(cmd, in + ": --remove-vertices is for 2-D grids", kExitUsage);
+  if (remove_vertices && req.method == "insertion" && (!req.limits.max_error.set() || req.progressive))
+    return fail(cmd, "--remove-vertices with --method insertion needs --max-error and no --progressive (spec 8.8)",
+                kExitUsage);
   // spec 10.6: the paper's pass inserts what exceeds E; without E it has nothing to
   // compare with, and the mesh would silently be the `mesh` distance's.
   if (distance == "trilinear" && !args.has("max-error"))
