@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace mrsv::reconstruct {
@@ -34,17 +35,20 @@ class CandidateQueue {
     cand_.clear();
   }
   bool empty() const { return heap_.empty(); }
-  uint32_t top() const { return heap_.front().cell; }
+  uint32_t top() const { return heap_.front().cell(); }
   const Candidate& candidate(uint32_t cell) const { return cand_[cell]; }
 
   // Sets (or replaces) the entry of `cell`.
   void set(uint32_t cell, const Candidate& c) {
     grow(cell);
     cand_[cell] = c;
-    const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample < kNoTie;
+    const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample <= kMaxTie;
     // (An exact num converts from 64 bits, without the 128-bit library call.)
     const double num = exact ? double(int64_t(c.num)) : double(c.num);
-    const Entry e{num / double(c.den), cell, exact ? uint32_t(c.sample) : kNoTie};
+    const double key = num / double(c.den);
+    uint64_t bits;
+    std::memcpy(&bits, &key, sizeof bits);
+    const Entry e{bits, exact ? uint64_t(kMaxTie - c.sample) << 32 | cell : kInexact | cell};
     if (pos_[cell] == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);
@@ -62,7 +66,7 @@ class CandidateQueue {
     pos_[cell] = kAbsent;
     const Entry last = heap_.back();
     heap_.pop_back();
-    if (last.cell == cell) return;
+    if (last.cell() == cell) return;
     if (i > 0 && before(last, heap_[(i - 1) / kArity])) siftUp(i, last);
     else siftDown(i, last);
   }
@@ -78,17 +82,23 @@ class CandidateQueue {
   // in their exact order and equal only when the errors are: two distinct
   // errors differ by at least 1 / (den den'), relatively by 1 / (num den')
   // > 2^-50, while each quotient of exact doubles is rounded by at most
-  // 2^-53. Such an entry carries its sample as `tie`, so that a tie between
-  // two of them is also decided in the heap array; other near-ties read the
-  // exact candidates.
-  static constexpr uint32_t kNoTie = UINT32_MAX;
+  // 2^-53. Such an entry carries its sample too, so that the order of two of
+  // them (larger error, then smaller sample, then larger cell: a sample on an
+  // edge is in two cells with the same error) is that of two 128-bit
+  // integers: (key, tie) with the key's bits (a positive double's bits are
+  // in its order) and tie = (kMaxTie - sample) << 32 | cell. Other entries
+  // have the bit kInexact in tie, and their near-ties read the exact
+  // candidates.
+  static constexpr uint64_t kMaxTie = (uint64_t{1} << 31) - 1;
+  static constexpr uint64_t kInexact = uint64_t{1} << 63;
   static constexpr __int128 kExactNum = __int128{1} << 30;
   static constexpr int64_t kExactDen = int64_t{1} << 20;
   struct Entry {
-    double key;
-    uint32_t cell;
-    uint32_t tie;  // the sample, or kNoTie when not exact
+    uint64_t key;  // the error's double, as bits
+    uint64_t tie;
+    uint32_t cell() const { return uint32_t(tie); }
   };
+  static unsigned __int128 wide(const Entry& e) { return (unsigned __int128){e.key} << 64 | e.tie; }
 
   void grow(uint32_t cell) {
     if (cell < pos_.size()) return;
@@ -96,17 +106,25 @@ class CandidateQueue {
     pos_.resize(n, kAbsent);
     cand_.resize(n);
   }
-  // Whether a comes before b. Doubles carry 53 bits: keys further apart than
-  // 2^-40 relative are in the exact order; closer ones are compared exactly.
+  // Whether a comes before b.
   bool before(const Entry& a, const Entry& b) const {
-    if (a.tie != kNoTie && b.tie != kNoTie) return a.key > b.key || (a.key == b.key && a.tie < b.tie);
-    if (a.key > b.key * (1 + 0x1p-40)) return true;
-    if (b.key > a.key * (1 + 0x1p-40)) return false;
-    return worse(cand_[a.cell], cand_[b.cell]);
+    if (((a.tie | b.tie) & kInexact) == 0)
+      return wide(a) > wide(b);
+    return beforeInexact(a, b);
+  }
+  // Doubles carry 53 bits: keys further apart than 2^-40 relative are in the
+  // exact order; closer ones are compared exactly.
+  [[gnu::noinline]] bool beforeInexact(const Entry& a, const Entry& b) const {
+    double ka, kb;
+    std::memcpy(&ka, &a.key, sizeof ka);
+    std::memcpy(&kb, &b.key, sizeof kb);
+    if (ka > kb * (1 + 0x1p-40)) return true;
+    if (kb > ka * (1 + 0x1p-40)) return false;
+    return worse(cand_[a.cell()], cand_[b.cell()]);
   }
   void place(uint32_t i, const Entry& e) {
     heap_[i] = e;
-    pos_[e.cell] = i;
+    pos_[e.cell()] = i;
   }
   void siftUp(uint32_t i, const Entry& e) {
     while (i > 0) {

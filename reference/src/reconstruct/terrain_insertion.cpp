@@ -129,22 +129,35 @@ struct TerrainInserter::State {
   // kUnit: the lattice step is 1 (the single stage and every last stage).
   template <class W, bool kUnit>
   void scanWith(uint32_t t) {
-    // The corners from the triangulation (its insertion has just read them)
-    // and their values from the field (beside the samples about to be read).
+    // The corners from the triangulation (its insertion has just read them).
     const auto& tv = dt.triangle(t);
     const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
+    const int64_t den = orient2d(a, b, c);
     const int32_t* values = field->values.data();
     const int64_t nx64 = nx;
-    const int64_t za = values[a.y * nx64 + a.x];
-    const int64_t zb = values[b.y * nx64 + b.x] - za, zc = values[c.y * nx64 + c.x] - za;
-    const int64_t den = orient2d(a, b, c);
-    // Pick's theorem: a triangle of grid points with twice its area 1 holds
-    // no grid point but its corners (on a lattice of step 1, every sample).
-    if (kUnit && den == 1) {
+    if (kUnit && den <= 2) {
+      // Pick's theorem: a triangle of grid points with twice its area 1
+      // holds no grid point but its corners, one with twice its area 2 only
+      // the midpoint of its one edge whose both coordinate differences are
+      // even (on a lattice of step 1, every sample).
+      if (den == 2) {
+        const Point2& u = ((b.x ^ c.x) | (b.y ^ c.y)) & 1 ? ((c.x ^ a.x) | (c.y ^ a.y)) & 1 ? a : c : b;
+        const Point2& w = &u == &a ? b : &u == &b ? c : a;
+        const int64_t mx = (int64_t{u.x} + w.x) >> 1, my = (int64_t{u.y} + w.y) >> 1;
+        const bool border = mx == 0 || my == 0 || mx == nx64 - 1 || my == int64_t{ny} - 1;
+        if (!(skip_border && border)) {
+          const int64_t sample = my * nx64 + mx;
+          const int64_t e = 2 * int64_t{values[sample]} - values[u.y * nx64 + u.x] - values[w.y * nx64 + w.x];
+          if (e != 0) return record<W>(t, W(e < 0 ? -e : e), den, uint64_t(sample));
+        }
+      }
       worst_error[t] = 0.0;
       queue.remove(t);
       return;
     }
+    // Their values from the field (beside the samples about to be read).
+    const int64_t za = values[a.y * nx64 + a.x];
+    const int64_t zb = values[b.y * nx64 + b.x] - za, zc = values[c.y * nx64 + c.x] - za;
     const int64_t st = kUnit ? 1 : step;
     // Barycentric numerators as functions of the sample (x, y): w = ex * x + ey * y + e0.
     struct Edge {
@@ -274,24 +287,29 @@ struct TerrainInserter::State {
       }
       if (lo <= hi) visitRow(values + last_y * nx64, lo, hi, qAt(x0, last_y));
     }
-    if (best_num > 0) {
+    if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best - values));
+    worst_error[t] = 0.0;
+    queue.remove(t);
+  }
+
+  // Triangle t's worst sample, with the error num / den > 0: queued when
+  // beyond the bound.
+  template <class W>
+  void record(uint32_t t, W num, int64_t den, uint64_t sample) {
+    worst_error[t] = double(num) / double(den);
+    // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
+    // numerator fits 64 bits, as it does but for huge bounds and shifts.)
+    const bool beyond = bound_num < 0 ||
+                        (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
+                             ? __int128{int64_t(num)} * bound_den > __int128{int64_t(bound_num)} * den
+                             : __int128{num} * bound_den > bound_num * den);
+    if (beyond) {
       Candidate found;
-      found.num = best_num;
+      found.num = num;
       found.den = den;
-      found.sample = uint64_t(best - values);
-      worst_error[t] = double(best_num) / double(den);
-      // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
-      // numerator fits 64 bits, as it does but for huge bounds and shifts.)
-      const bool beyond = bound_num < 0 ||
-                          (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
-                               ? __int128{int64_t(best_num)} * bound_den > __int128{int64_t(bound_num)} * den
-                               : found.num * bound_den > bound_num * found.den);
-      if (beyond) {
-        queue.set(t, found);
-        return;
-      }
-    } else {
-      worst_error[t] = 0.0;
+      found.sample = sample;
+      queue.set(t, found);
+      return;
     }
     queue.remove(t);
   }
