@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <vector>
 
 namespace mrsv::reconstruct {
@@ -30,12 +31,12 @@ class CandidateQueue {
   static constexpr uint32_t kAbsent = UINT32_MAX;
 
   void clear() {
-    heap_.clear();
+    heap_.assign(kRoot, Entry{});
     pos_.clear();
     cand_.clear();
   }
-  bool empty() const { return heap_.empty(); }
-  uint32_t top() const { return heap_.front().cell(); }
+  bool empty() const { return heap_.size() <= kRoot; }
+  uint32_t top() const { return heap_[kRoot].cell(); }
   const Candidate& candidate(uint32_t cell) const { return cand_[cell]; }
 
   // Sets (or replaces) the entry of `cell`.
@@ -55,7 +56,7 @@ class CandidateQueue {
       return;
     }
     const uint32_t i = pos_[cell];
-    if (i > 0 && before(e, heap_[(i - 1) / kArity])) siftUp(i, e);
+    if (i > kRoot && before(e, at(parent(i)))) siftUp(i, e);
     else siftDown(i, e);
   }
 
@@ -67,14 +68,18 @@ class CandidateQueue {
     const Entry last = heap_.back();
     heap_.pop_back();
     if (last.cell() == cell) return;
-    if (i > 0 && before(last, heap_[(i - 1) / kArity])) siftUp(i, last);
+    if (i > kRoot && before(last, at(parent(i)))) siftUp(i, last);
     else siftDown(i, last);
   }
 
  private:
   // Four children per node: half the depth of a binary heap, and a node's
-  // children (16 bytes each) share a cache line or two.
-  static constexpr uint32_t kArity = 4;
+  // children (16 bytes each) fill one cache line: the root is at position 3
+  // of an array of 64-byte groups, the children of position i at 4 i - 8 to
+  // 4 i - 5, its parent at i / 4 + 2.
+  static constexpr uint32_t kRoot = 3;
+  static uint32_t parent(uint32_t i) { return i / 4 + 2; }
+  static uint32_t firstChild(uint32_t i) { return 4 * i - 8; }
 
   // The error as a double beside the cell, so that most comparisons read the
   // heap array alone. When num < 2^30 and den < 2^20 (most errors: small
@@ -99,6 +104,20 @@ class CandidateQueue {
     uint32_t cell() const { return uint32_t(tie); }
   };
   static unsigned __int128 wide(const Entry& e) { return (unsigned __int128){e.key} << 64 | e.tie; }
+  // An allocator of cache-line-aligned blocks, for the heap.
+  template <class T>
+  struct LineAligned {
+    using value_type = T;
+    LineAligned() = default;
+    template <class U>
+    LineAligned(const LineAligned<U>&) {}
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64})); }
+    void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t{64}); }
+    bool operator==(const LineAligned&) const { return true; }
+    bool operator!=(const LineAligned&) const { return false; }
+  };
+  Entry& at(uint32_t i) { return heap_[i]; }
+  const Entry& at(uint32_t i) const { return heap_[i]; }
 
   void grow(uint32_t cell) {
     if (cell < pos_.size()) return;
@@ -123,43 +142,43 @@ class CandidateQueue {
     return worse(cand_[a.cell()], cand_[b.cell()]);
   }
   void place(uint32_t i, const Entry& e) {
-    heap_[i] = e;
+    at(i) = e;
     pos_[e.cell()] = i;
   }
   void siftUp(uint32_t i, const Entry& e) {
-    while (i > 0) {
-      const uint32_t parent = (i - 1) / kArity;
-      if (!before(e, heap_[parent])) break;
-      place(i, heap_[parent]);
-      i = parent;
+    while (i > kRoot) {
+      const uint32_t up = parent(i);
+      if (!before(e, at(up))) break;
+      place(i, at(up));
+      i = up;
     }
     place(i, e);
   }
   void siftDown(uint32_t i, const Entry& e) {
     const uint32_t n = uint32_t(heap_.size());
     for (;;) {
-      const uint32_t first = kArity * i + 1;
+      const uint32_t first = firstChild(i);
       if (first >= n) break;
       uint32_t child = first;
       if (first + 3 < n) {
         // Four children, as nearly every node has: two pairs, then their
         // winners (the same three comparisons, two of them independent).
-        const uint32_t left = before(heap_[first + 1], heap_[first]) ? first + 1 : first;
-        const uint32_t right = before(heap_[first + 3], heap_[first + 2]) ? first + 3 : first + 2;
-        child = before(heap_[right], heap_[left]) ? right : left;
+        const uint32_t left = before(at(first + 1), at(first)) ? first + 1 : first;
+        const uint32_t right = before(at(first + 3), at(first + 2)) ? first + 3 : first + 2;
+        child = before(at(right), at(left)) ? right : left;
       } else {
         for (uint32_t k = first + 1; k < n; ++k)
-          if (before(heap_[k], heap_[child])) child = k;
+          if (before(at(k), at(child))) child = k;
       }
-      if (!before(heap_[child], e)) break;
-      place(i, heap_[child]);
+      if (!before(at(child), e)) break;
+      place(i, at(child));
       i = child;
     }
     place(i, e);
   }
 
-  std::vector<Entry> heap_;
-  std::vector<uint32_t> pos_;    // per cell: index in heap_, or kAbsent
+  std::vector<Entry, LineAligned<Entry>> heap_ = std::vector<Entry, LineAligned<Entry>>(kRoot);  // from position 3
+  std::vector<uint32_t> pos_;    // per cell: position in the heap, or kAbsent
   std::vector<Candidate> cand_;  // per cell
 };
 
