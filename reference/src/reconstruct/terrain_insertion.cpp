@@ -316,9 +316,9 @@ struct TerrainInserter::State {
 
   // Every vertex's rank (spec 8.3) is its insertion number, corners 0 to 3:
   // ties of cocircular vertices go to the older ones (decision D47).
-  void insertSample(uint64_t sample, uint32_t hint) {
+  // t is the triangle whose worst sample it is, which holds it.
+  void insertSample(uint64_t sample, uint32_t t) {
     const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
-    const uint32_t t = dt.locate(p, hint);
     const uint32_t v = dt.insert(p, dt.vertexCount(), t);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
