@@ -135,22 +135,45 @@ struct TerrainInserter::State {
     const int64_t den = orient2d(a, b, c);
     const int32_t* values = field->values.data();
     const int64_t nx64 = nx;
-    if (kUnit && den <= 2) {
-      // Pick's theorem: a triangle of grid points with twice its area 1
-      // holds no grid point but its corners, one with twice its area 2 only
-      // the midpoint of its one edge whose both coordinate differences are
-      // even (on a lattice of step 1, every sample).
+    if (kUnit && den <= 3) {
+      // Pick's theorem, den = 2 I + B - 2 with I grid points inside and B on
+      // the border, and an edge holds gcd(dx, dy) - 1 points besides its
+      // ends, a gcd that divides den: den = 1, no point but the corners;
+      // den = 2, the midpoint of the one edge whose coordinate differences
+      // are even; den = 3, the centroid when it is a grid point (I = 1),
+      // else the two points at the thirds of the one edge whose differences
+      // are multiples of 3 (B = 5). (On a lattice of step 1, every sample.)
+      W best_num = 0;
+      int64_t best = 0;
+      // (x, y) with the error numerator e; points in increasing index.
+      const auto take = [&](int64_t x, int64_t y, int64_t e) {
+        if (skip_border && (x == 0 || y == 0 || x == nx64 - 1 || y == int64_t{ny} - 1)) return;
+        const W size = W(e < 0 ? -e : e);
+        if (size > best_num) best_num = size, best = y * nx64 + x;
+      };
+      const auto value = [&](int64_t x, int64_t y) { return int64_t{values[y * nx64 + x]}; };
       if (den == 2) {
         const Point2& u = ((b.x ^ c.x) | (b.y ^ c.y)) & 1 ? ((c.x ^ a.x) | (c.y ^ a.y)) & 1 ? a : c : b;
         const Point2& w = &u == &a ? b : &u == &b ? c : a;
         const int64_t mx = (int64_t{u.x} + w.x) >> 1, my = (int64_t{u.y} + w.y) >> 1;
-        const bool border = mx == 0 || my == 0 || mx == nx64 - 1 || my == int64_t{ny} - 1;
-        if (!(skip_border && border)) {
-          const int64_t sample = my * nx64 + mx;
-          const int64_t e = 2 * int64_t{values[sample]} - values[u.y * nx64 + u.x] - values[w.y * nx64 + w.x];
-          if (e != 0) return record<W>(t, W(e < 0 ? -e : e), den, uint64_t(sample));
+        take(mx, my, 2 * value(mx, my) - value(u.x, u.y) - value(w.x, w.y));
+      } else if (den == 3) {
+        const int64_t sx = int64_t{a.x} + b.x + c.x, sy = int64_t{a.y} + b.y + c.y;
+        if (sx % 3 == 0 && sy % 3 == 0) {
+          take(sx / 3, sy / 3, 3 * value(sx / 3, sy / 3) - value(a.x, a.y) - value(b.x, b.y) - value(c.x, c.y));
+        } else {
+          const auto thirds = [](const Point2& p, const Point2& q) { return (q.x - p.x) % 3 == 0 && (q.y - p.y) % 3 == 0; };
+          const Point2& u = thirds(b, c) ? b : thirds(c, a) ? c : a;
+          const Point2& w = &u == &a ? b : &u == &b ? c : a;
+          const int64_t dx = (w.x - u.x) / 3, dy = (w.y - u.y) / 3;
+          const int64_t zu = value(u.x, u.y), zw = value(w.x, w.y);
+          const int64_t x1 = u.x + dx, y1 = u.y + dy, x2 = u.x + 2 * dx, y2 = u.y + 2 * dy;
+          const int64_t e1 = 3 * value(x1, y1) - 2 * zu - zw, e2 = 3 * value(x2, y2) - zu - 2 * zw;
+          if (y1 * nx64 + x1 < y2 * nx64 + x2) take(x1, y1, e1), take(x2, y2, e2);
+          else take(x2, y2, e2), take(x1, y1, e1);
         }
       }
+      if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best));
       worst_error[t] = 0.0;
       queue.remove(t);
       return;
