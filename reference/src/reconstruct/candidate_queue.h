@@ -37,7 +37,11 @@ class CandidateQueue {
   }
   bool empty() const { return heap_.size() <= kRoot; }
   uint32_t top() const { return heap_[kRoot].cell(); }
-  const Candidate& candidate(uint32_t cell) const { return cand_[cell]; }
+  // The sample of the top entry, from the heap array when the entry carries it.
+  uint64_t topSample() const {
+    const Entry& e = heap_[kRoot];
+    return e.tie & kInexact ? cand_[e.cell()].sample : kMaxTie - (e.tie >> 32);
+  }
 
   // Sets (or replaces) the entry of `cell`.
   void set(uint32_t cell, const Candidate& c) {

@@ -466,13 +466,10 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
 
   uint64_t since_progress = 0;
   while (!s.queue.empty()) {
-    const uint32_t worst_triangle = s.queue.top();
-    const Candidate worst = s.queue.candidate(worst_triangle);
-    if (limits.max_error.set() &&
-        worst.num * bound_den <= bound_num * worst.den)
-      break;
+    // (Only candidates beyond the bound are queued: the queue runs empty
+    // when the worst is within it.)
     if (limits.max_cells != 0 && s.dt.triangleCount() >= limits.max_cells) break;
-    s.insertSample(worst.sample, worst_triangle);
+    s.insertSample(s.queue.topSample(), s.queue.top());
     if (progress && ++since_progress == 4096) {
       since_progress = 0;
       if (!progress(s.dt.triangleCount())) break;
