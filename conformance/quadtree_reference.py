@@ -6,13 +6,15 @@ decoder on the prefix; with --levels K the prefix ends where 8.7's last stage wi
 s >= K ends) and does 9.3 to 9.6 itself: the restricted quadtree with split and
 balance, the midpoint masks, table 9-1 and the candidate triangulations of table 9-2,
 the exact within-E test of 9.4 by rounds, the tile border rule of 9.5 (side cuts and
-zipped strips) and the triangle-count search of 9.6. It does not do the wavelet
+zipped strips), the triangle-count search of 9.6 and the vertex-removal pass of 9.7
+(--remove-vertices: every pass over every candidate). It does not do the wavelet
 criterion of 9.2 (no detail signals): --epsilon is refused with exit 2 ("not
 implemented"); the suite runs it on the --clause 9 cases without
 --epsilon (run_conformance.py --skip-args=--epsilon).
 
   python3 conformance/quadtree_reference.py IN.mrsv OUT --mrsv PATH/TO/mrsv --method quadtree
-      [--max-error E | --triangles N] [--no-border-rule] [--bytes N] [--levels K] [--canonical]
+      [--max-error E | --triangles N] [--no-border-rule] [--remove-vertices] [--region X0,Y0,X1,Y1]
+      [--bytes N] [--levels K] [--canonical]
 """
 import argparse
 import os
@@ -257,6 +259,75 @@ def mesh(field, bound, tile_borders):
     return tris
 
 
+MAX_LINK = 64  # 9.7: a vertex whose link polygon has more points stays
+
+
+def remove_vertices(field, bound, tris):
+    """9.7: every inner vertex whose link polygon clips into ears within E leaves, pass after pass."""
+    W, H = field.W, field.H
+    cache = {}
+    star = {}
+    for t in tris:
+        for p in t:
+            star.setdefault(p, set()).add(t)
+
+    def fineness(p):
+        m = p[0] | p[1]
+        return (m & -m).bit_length() - 1
+
+    def clip(v):
+        link = {}
+        for t in star[v]:
+            k = t.index(v)
+            link[t[(k + 1) % 3]] = t[(k + 2) % 3]
+        start = min(link, key=lambda p: (p[1], p[0]))
+        P = [start]
+        while link[P[-1]] != start:
+            P.append(link[P[-1]])
+        if len(P) > MAX_LINK:  # 9.7: a larger star stays
+            return None
+        T = []
+        while len(P) > 3:
+            m = len(P)
+            for i in range(m):
+                a, b, c = P[(i - 1) % m], P[i], P[(i + 1) % m]
+                if orient(a, b, c) <= 0:
+                    continue
+                if any(q not in (a, b, c) and orient(a, b, q) >= 0 and orient(b, c, q) >= 0 and orient(c, a, q) >= 0
+                       for q in P):
+                    continue
+                if within(field, (a, b, c), bound, cache):
+                    T.append((a, b, c))
+                    del P[i]
+                    break
+            else:
+                return None
+        if orient(P[0], P[1], P[2]) > 0 and within(field, tuple(P), bound, cache):
+            return T + [tuple(P)]
+        return None
+
+    order = sorted((p for p in star if 0 < p[0] < W - 1 and 0 < p[1] < H - 1),
+                   key=lambda p: (fineness(p), p[1], p[0]))
+    while True:
+        removed = 0
+        for v in order:
+            if not star.get(v):
+                continue
+            T = clip(v)
+            if T is None:
+                continue
+            for t in list(star[v]):
+                for p in t:
+                    star[p].discard(t)
+            for t in T:
+                for p in t:
+                    star[p].add(t)
+            removed += 1
+        if removed == 0:
+            break
+    return list({t for ts in star.values() for t in ts})
+
+
 def canonical(field, tris):
     verts = sorted({p for t in tris for p in t}, key=lambda p: p[0] + field.W * p[1])
     number = {p: n for n, p in enumerate(verts)}
@@ -274,29 +345,41 @@ def canonical(field, tris):
     return bytes(out)
 
 
-def reconstruct(data, mrsv, max_error=None, triangles=None, border=True, levels=0):
+def reconstruct(data, mrsv, max_error=None, triangles=None, border=True, levels=0, remove=False, region=None):
     stream = rr.Stream(data)
     if stream.sample_type not in rr.INTEGER_TYPES:
         raise Refused("float samples: 8.1 accepts integer samples only")
     if stream.num_dims != 2 or stream.sx < 2 or stream.sy < 2:
         raise Refused("9.1: a 2-D field of at least 2 x 2 samples")
-    end, _ = stream.stages(levels)[-1]
-    field = Field(stream.sx, stream.sy, rr.decode_samples(mrsv, data[:end], stream))
+    if region is not None:  # 8.1: the box's samples of the whole decode, one stage
+        if levels:
+            raise Refused("8.1: a region is meshed in one stage, without --levels")
+        box = rr.parse_region(region, stream.sx, stream.sy)
+        values = rr.crop(rr.decode_samples(mrsv, data, stream), stream.sx, box)
+        field = Field(box[2] - box[0], box[3] - box[1], values)
+    else:
+        end, _ = stream.stages(levels)[-1]
+        field = Field(stream.sx, stream.sy, rr.decode_samples(mrsv, data[:end], stream))
     bound = rr.parse_bound(max_error) if max_error is not None else None
     # mrsv mesh's options: the tile border rule with a maximum error and a grid of at least 4 x 4.
     tiles = border and bound is not None and field.W >= 4 and field.H >= 4
+
+    def made(t):  # 9.4 (and 9.5), then 9.7 when asked
+        tris = mesh(field, t, tiles)
+        return remove_vertices(field, t, tris) if remove else tris
+
     if triangles:
         lo, hi = 0, 8 * (max(field.v) - min(field.v))
         while lo < hi:
             mid = lo + (hi - lo) // 2
-            if len(mesh(field, Fraction(mid, 8), tiles)) <= triangles:
+            if len(made(Fraction(mid, 8))) <= triangles:
                 hi = mid
             else:
                 lo = mid + 1
-        return canonical(field, mesh(field, Fraction(lo, 8), tiles))
+        return canonical(field, made(Fraction(lo, 8)))
     if bound is None:
         raise Refused("give --max-error or --triangles")
-    return canonical(field, mesh(field, bound, tiles))
+    return canonical(field, made(bound))
 
 
 def main():
@@ -309,6 +392,8 @@ def main():
     parser.add_argument("--triangles", type=int)
     parser.add_argument("--epsilon")
     parser.add_argument("--no-border-rule", action="store_true")
+    parser.add_argument("--remove-vertices", action="store_true")
+    parser.add_argument("--region")
     parser.add_argument("--bytes", type=int)
     parser.add_argument("--levels", type=int, default=0)
     parser.add_argument("--canonical", action="store_true")
@@ -321,7 +406,8 @@ def main():
     if args.bytes is not None:
         data = data[:args.bytes]
     try:
-        out = reconstruct(data, args.mrsv, args.max_error, args.triangles, not args.no_border_rule, args.levels)
+        out = reconstruct(data, args.mrsv, args.max_error, args.triangles, not args.no_border_rule, args.levels,
+                          args.remove_vertices, args.region)
     except Refused as e:
         print(f"refused: {e}", file=sys.stderr)
         return 1

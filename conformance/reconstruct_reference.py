@@ -22,7 +22,8 @@ the reference agrees on both mask vectors). The masked positions are those where
 first copy holds the no-data value (a terrain sample never equals -32768).
 
   python3 conformance/reconstruct_reference.py IN.mrsv OUT --mrsv PATH/TO/mrsv
-      [--max-error E] [--triangles N] [--progressive] [--no-border-rule]
+      [--max-error E] [--triangles N] [--progressive] [--no-border-rule] [--remove-vertices]
+      [--region X0,Y0,X1,Y1]
       [--bytes N] [--levels K] [--canonical]
   writes the canonical output of 8.2 to OUT (--canonical is accepted and implied);
   refuses (exit 1, a message) what 8.1 and 8.7 refuse.
@@ -502,26 +503,50 @@ def parse_bound(text):
     return e
 
 
+def parse_region(text, X, Y):
+    """8.1 a region: "x0,y0,x1,y1", a non-empty box inside the X x Y grid."""
+    v = [int(t) for t in text.split(",")]
+    if len(v) != 4 or not (0 <= v[0] < v[2] <= X and 0 <= v[1] < v[3] <= Y):
+        raise Refused(f"--region {text}: not a box inside the {X} x {Y} grid")
+    return v
+
+
+def crop(values, X, box):
+    """The samples of box (x0, y0, x1, y1) of a field X samples wide, x fastest."""
+    x0, y0, x1, y1 = box
+    return [values[x + X * y] for y in range(y0, y1) for x in range(x0, x1)]
+
+
 def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, border=True, levels=0,
-                log=None):
+                log=None, remove=False, region=None):
     stream = Stream(data)
     if stream.sample_type not in INTEGER_TYPES:
         raise Refused(f"{TYPE_NAMES.get(stream.sample_type, '?')} samples: 8.1 accepts integer samples only")
     if stream.num_dims != 2:
         raise Refused(f"{stream.num_dims}-D grid: this reconstructor does 2-D grids (8.1)")
     X, Y = stream.sx, stream.sy
+    box = None
+    if region is not None:  # 8.1: the box's samples of the whole decode, one stage
+        if progressive or levels:
+            raise Refused("8.1: a region is meshed in one stage, without --progressive or --levels")
+        box = parse_region(region, X, Y)
+        X, Y = box[2] - box[0], box[3] - box[1]
     if not (2 <= X <= 65536 and 2 <= Y <= 65536):
         raise Refused(f"a {X} x {Y} grid: 8.1 accepts 2 <= X, Y <= 65536")
     bound = parse_bound(max_error) if max_error is not None else None
     if bound is None and triangles is None:
         raise Refused("give --max-error, --triangles or both")
-    stages = stream.stages(levels)
+    if remove and (bound is None or progressive):
+        raise Refused("8.8: the vertex-removal pass needs --max-error and no --progressive")
+    stages = [(len(data), 0)] if box else stream.stages(levels)
     if not progressive:
         stages = stages[-1:]
     mesh = Mesh(X, Y)
     mesh.border = border and bound is not None
     for end, s in stages:
         mesh.values = decode_samples(mrsv, data[:end], stream)
+        if box:
+            mesh.values = crop(mesh.values, stream.sx, box)
         mesh.step = 1 << s
         sb = bound * (1 << (s + 1)) if bound is not None and s > 0 else bound
         mesh.heap = []
@@ -534,6 +559,11 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, b
         mesh.check_delaunay()
         if log:
             log(f"stage s={s} end={end}: {len(mesh.rank)} vertices, {len(mesh.tris)} triangles")
+    if remove:  # 8.8: 9.7's pass, as quadtree_reference.py writes it from chapter 9
+        import quadtree_reference as qr
+        field = qr.Field(X, Y, mesh.values)
+        tris = [(mesh.xy(a), mesh.xy(b), mesh.xy(c)) for a, b, c in mesh.tris]
+        return qr.canonical(field, qr.remove_vertices(field, bound, tris))
     return mesh.canonical()
 
 
@@ -546,6 +576,8 @@ def main():
     parser.add_argument("--triangles", type=int)
     parser.add_argument("--progressive", action="store_true")
     parser.add_argument("--no-border-rule", action="store_true")
+    parser.add_argument("--remove-vertices", action="store_true")
+    parser.add_argument("--region")
     parser.add_argument("--bytes", type=int)
     parser.add_argument("--levels", type=int, default=0)
     parser.add_argument("--canonical", action="store_true", help="(implied)")
@@ -559,7 +591,8 @@ def main():
             raise Refused("--triangles must be a positive integer")
         out = reconstruct(data, args.mrsv, args.max_error, args.triangles, args.progressive,
                           not args.no_border_rule, args.levels,
-                          None if args.quiet else (lambda m: print(m, file=sys.stderr)))
+                          None if args.quiet else (lambda m: print(m, file=sys.stderr)), args.remove_vertices,
+                          args.region)
     except Refused as e:
         print(f"refused: {e}", file=sys.stderr)
         return 1

@@ -138,7 +138,17 @@ def build(data_dir, mrsv):
                  ["--max-error", "20", "--triangles", "40"], ["--max-error", "1", "--progressive"],
                  ["--max-error", "2147483648"], ["--max-error", ".5"],
                  ["!", "--max-error", "2.5000000001"], ["!", "--max-error", "2147483648.5"],
-                 ["!", "--triangles", "0"], ["!", "--max-error", "1", "--levels", "1"]]))
+                 ["!", "--triangles", "0"], ["!", "--max-error", "1", "--levels", "1"],
+                 ["--max-error", "5", "--remove-vertices"], ["--max-error", "0", "--remove-vertices"],
+                 ["--max-error", "1", "--no-border-rule", "--remove-vertices"],
+                 ["--max-error", "5", "--triangles", "100", "--remove-vertices"],
+                 ["!", "--max-error", "1", "--progressive", "--remove-vertices"],
+                 ["!", "--triangles", "50", "--remove-vertices"],
+                 ["--max-error", "5", "--region", "0,0,17,33"], ["--max-error", "5", "--region", "16,0,33,33"],
+                 ["--max-error", "2", "--region", "16,0,33,33", "--remove-vertices"],
+                 ["--triangles", "40", "--region", "3,5,20,31", "--no-border-rule"],
+                 ["!", "--max-error", "5", "--region", "0,0,34,33"],
+                 ["!", "--max-error", "5", "--region", "0,0,17,33", "--progressive"]]))
     ll = encode(mrsv, sh33, (33, 33), ["--progressive", "--lossless"])
     bands = chunk_ends(ll, b"GBND")
     stream = rr.Stream(ll)
@@ -185,13 +195,15 @@ def build(data_dir, mrsv):
     where_sh17 = "Mt St Helens (mt_st_helens_317x460) rows 300-364, cols 40-56"
     out.append(("sh17x65_lossless", encode(mrsv, sh17, (17, 65), ["--lossless"]),
                 f"lossless 17x65 int16 (the encoder's choice of route) of {where_sh17}",
-                [["--max-error", "1"], ["--max-error", "0", "--progressive"], ["--max-error", "2.5", "--no-border-rule"]]))
+                [["--max-error", "1"], ["--max-error", "0", "--progressive"], ["--max-error", "2.5", "--no-border-rule"],
+                 ["--max-error", "2.5", "--remove-vertices"]]))
     fuji = crop(data_dir, "fuji", 750, 850, 33, 33)
     where_fuji = "Mt Fuji's summit (srtm3_N35E138_mt_fuji_1201x1201) rows 750-782, cols 850-882, 45 voids"
     out.append(("fuji33_mask_lossless_progressive",
                 encode(mrsv, fuji, (33, 33), ["--nodata", "-32768", "--progressive", "--lossless"]),
                 f"lossless progressive 33x33 int16 with a no-data mask of {where_fuji}",
-                [["--max-error", "5"], ["--max-error", "2", "--progressive"], ["--max-error", "0"]]))
+                [["--max-error", "5"], ["--max-error", "2", "--progressive"], ["--max-error", "0"],
+                 ["--max-error", "5", "--remove-vertices"]]))
     out.append(("fuji33_mask_psnr45_progressive",
                 encode(mrsv, fuji, (33, 33), ["--nodata", "-32768", "--progressive", "--psnr", "45"]),
                 f"lossy progressive (--psnr 45) 33x33 int16 with a no-data mask of {where_fuji}",
@@ -234,6 +246,10 @@ def rules_of_case(args, stream, refused):
     if refused:
         if s.sample_type not in rr.INTEGER_TYPES or s.num_dims != 2 or s.sx < 2 or s.sy < 2:
             return ["R8.1-2"]
+        if "--remove-vertices" in args:
+            return ["R8.8-1"]
+        if "--region" in args:
+            return ["R8.1-3"]
         if "--levels" in args or "--bytes" in args:
             return ["R8.7-1"]
         return ["R8.5-2"]
@@ -247,6 +263,10 @@ def rules_of_case(args, stream, refused):
         tags.append("R8.1-1")
     if s.coding == 1:
         tags += ["R8.7-1", "R8.7-2"]
+    if "--remove-vertices" in args:
+        tags += ["R8.8-1"] + ["R9.4-1", "R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    if "--region" in args:
+        tags.append("R8.1-3")
     return tags
 
 

@@ -164,7 +164,13 @@ def build9(data_dir, mrsv):
                 f"stored 33x33 int16 of {where}",
                 [["--max-error", "5"], ["--max-error", "5", "--no-border-rule"], ["--max-error", "0"],
                  ["--max-error", "20"], ["--max-error", "2.5", "--no-border-rule"], ["--triangles", "100"],
-                 ["--triangles", "1"], ["!", "--epsilon", "10"]]))
+                 ["--triangles", "1"], ["!", "--epsilon", "10"],
+                 ["--max-error", "5", "--remove-vertices"], ["--max-error", "0", "--remove-vertices"],
+                 ["--max-error", "2.5", "--no-border-rule", "--remove-vertices"],
+                 ["--triangles", "100", "--remove-vertices"], ["!", "--epsilon", "10", "--remove-vertices"],
+                 ["--max-error", "5", "--region", "16,0,33,33"],
+                 ["--max-error", "5", "--region", "0,0,17,33", "--remove-vertices"],
+                 ["!", "--epsilon", "10", "--region", "0,0,17,33"]]))
     out.append(("qt_sh33_bspline_lossless_progressive",
                 enc(mrsv, sh33, (33, 33), ["--progressive", "--lossless", "--wavelet", "bspline"]),
                 f"lossless progressive 33x33 int16 (linear B-splines, bands and residual) of {where}",
@@ -183,16 +189,20 @@ def build9(data_dir, mrsv):
                 f"lossy progressive (--psnr 40, linear B-splines) 65x49 int16 of {where_bt}: not square, "
                 "so part of the tree lies outside the grid",
                 [["--max-error", "10"], ["--max-error", "10", "--no-border-rule"], ["--epsilon", "50"],
-                 ["--epsilon", "50", "--bytes", str(bands[len(bands) // 2])], ["--triangles", "300"]]))
+                 ["--epsilon", "50", "--bytes", str(bands[len(bands) // 2])], ["--triangles", "300"],
+                 ["--max-error", "10", "--remove-vertices"], ["--max-error", "10", "--no-border-rule", "--remove-vertices"],
+                 ["--max-error", "4", "--levels", "1", "--remove-vertices"]]))
     sh17 = rv.crop(data_dir, "st_helens", 300, 40, 17, 65)
     out.append(("qt_sh17x65_stored", enc(mrsv, sh17, (17, 65), ["--coding", "stored"]),
                 "stored 17x65 int16 of Mt St Helens (mt_st_helens_317x460) rows 300-364, cols 40-56",
-                [["--max-error", "4"], ["--max-error", "4", "--no-border-rule"], ["--triangles", "64"]]))
+                [["--max-error", "4"], ["--max-error", "4", "--no-border-rule"], ["--triangles", "64"],
+                 ["--max-error", "4", "--remove-vertices"], ["--max-error", "1", "--no-border-rule", "--remove-vertices"]]))
     g3 = rv.crop(data_dir, "st_helens", 100, 150, 3, 3)
     out.append(("qt_grid_3x3_stored", enc(mrsv, g3, (3, 3), ["--coding", "stored"]),
                 "stored 3x3 int16 (Mt St Helens rows 100-102, cols 150-152): under 4 x 4, so mrsv mesh meshes it "
                 "without the tile border rule whether or not --no-border-rule is given",
-                [["--max-error", "0"], ["--max-error", "0", "--no-border-rule"], ["--max-error", "100"]]))
+                [["--max-error", "0"], ["--max-error", "0", "--no-border-rule"], ["--max-error", "100"],
+                 ["--max-error", "100", "--remove-vertices"]]))
     g2 = rv.crop(data_dir, "st_helens", 100, 150, 2, 2)
     out.append(("qt_grid_2x2_stored", enc(mrsv, g2, (2, 2), ["--coding", "stored"]),
                 "stored 2x2 int16, the smallest grid 9.1 accepts: Mt St Helens rows 100-101, cols 150-151",
@@ -202,6 +212,19 @@ def build9(data_dir, mrsv):
                 "stored 5x4 int16, the smallest shapes with the tile border rule: Mt St Helens rows 100-103, "
                 "cols 150-154",
                 [["--max-error", "0"], ["--max-error", "3"]]))
+    # 9.7's bound on a link: a flat field with a rough left column; at E = 1 the
+    # border rule puts most of the column's points in the mesh, and after the
+    # first removals a vertex next to it has a link of more than 64 points.
+    edge = [0] * (100 * 100)
+    for y in range(100):
+        edge[100 * y] = (31 * y * y + 17 * y) % 13 - 6
+    out.append(("qt_flat100_rough_edge_lossless",
+                enc(mrsv, struct.pack("<%dh" % len(edge), *edge), (100, 100), ["--lossless"]),
+                "lossless 100x100 int16, synthetic: 0 everywhere but x = 0, where v(0, y) = (31 y^2 + 17 y) mod 13 "
+                "- 6; with --remove-vertices at E = 1 a link reaches more than 64 points (9.7), which changes the "
+                "mesh (without the bound: 124 vertices, 123 triangles)",
+                [["--max-error", "1"], ["--max-error", "1", "--remove-vertices"],
+                 ["--max-error", "1", "--no-border-rule", "--remove-vertices"]]))
     floats = struct.pack("<%df" % (33 * 33), *struct.unpack("<%dh" % (33 * 33), sh33))
     out.append(("qt_float32_33x33_stored", enc(mrsv, floats, (33, 33), ["--coding", "stored"], "float32"),
                 f"stored 33x33 float32 (the int16 values of {where}): float samples are refused",
@@ -249,6 +272,10 @@ def rules9(args, stream, refused):
             tags += ["R9.5-1", "R9.5-2"]
     if "--triangles" in args:
         tags.append("R9.6-1")
+    if "--remove-vertices" in args:
+        tags += ["R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    if "--region" in args:
+        tags.append("R8.1-3")
     return tags
 
 

@@ -12,7 +12,18 @@ R10_MESH = ["R8.2-1", "R8.2-2", "R8.2-3", "R10-1", "R10.1-2", "R10.2-1", "R10.2-
 
 R9_QUADTREE = ["R8.2-1", "R8.2-2", "R8.2-3", "R9.0-1", "R9.0-2", "R9.2-1", "R9.2-2", "R9.2-3", "R9.3-1", "R9.3-2", "R9.3-3", "R9.3-4", "R9.3-5", "R9.3-6", "R9.4-1", "R9.4-2", "R9.4-3", "R9.5-1", "R9.5-2", "R9.6-1"]
 
+R9_REMOVAL = ["R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+
 R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "R8.5-1", "R8.5-2", "R8.5-3", "R8.5-4", "R8.5-5", "R8.6-1", "R8.6-2"]
+
+# The vertex-removal pass after insertion (8.8) is chapter 9's (9.4's test, 9.7).
+R8_REMOVAL = ["R8.8-1", "R9.4-1"] + R9_REMOVAL
+
+
+def _in_order(tags):
+    """Tags sorted as the generators list them (R8.1-3 before R8.2-1, R9.10 after R9.9)."""
+    return sorted(tags, key=lambda t: [int(x) for x in t[1:].replace("-", ".").split(".")])
+
 
 RULES = {
     # --- container and stored grids (make_vectors.py) ---
@@ -304,11 +315,12 @@ RULES = {
     # Every stream with reconstructions: the canonical output, the predicates, the
     # triangulation and the greedy insertion with bounds and limits (8.2 to 8.6).
     **{n: R8_MESH for n in ("coast33_stored", "grid_2x2_stored")},
-    "sh33_stored": R8_MESH + ["R8.7-1"],
+    "sh33_stored": _in_order(R8_MESH + ["R8.1-3", "R8.7-1"] + R8_REMOVAL),
     **{n: R8_MESH + ["R8.7-1", "R8.7-2"] for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive",
-                                                  "bt65x49_maxerr2_progressive", "sh17x65_lossless", "grid_5x3_lossless")},
-    **{n: R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"]
-       for n in ("fuji33_mask_lossless_progressive", "fuji33_mask_psnr45_progressive")},
+                                                  "bt65x49_maxerr2_progressive", "grid_5x3_lossless")},
+    "sh17x65_lossless": R8_MESH + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
+    "fuji33_mask_lossless_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
+    "fuji33_mask_psnr45_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"],
     **{n: ["R8.1-2"] for n in ("float32_33x33_stored", "line_33_int16", "col_1x33_int16", "row_33x1_int16")},
 
     # --- mesh reconstruction of 3-D grids (reconstruct_vectors3.py; spec 10) ---
@@ -319,11 +331,13 @@ RULES = {
     **{n: ["R10.1-1"] for n in ("head5_float32_stored", "head1x5x5_stored", "head5x5x1_stored")},
 
     # --- quadtree reconstruction (reconstruct_vectors3.py; spec 9; hashes from the reference) ---
-    **{n: R9_QUADTREE for n in ("qt_sh33_bspline_lossless_progressive", "qt_sh33_cdf97_lossless_progressive",
-                                "qt_bt65x49_bspline_psnr40")},
-    "qt_sh33_stored": R9_QUADTREE[:5] + ["R9.1-1"] + R9_QUADTREE[8:],
-    "qt_sh17x65_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:],
-    **{n: R9_QUADTREE[:5] + R9_QUADTREE[8:-3] for n in ("qt_grid_3x3_stored", "qt_grid_2x2_stored")},
+    **{n: R9_QUADTREE for n in ("qt_sh33_bspline_lossless_progressive", "qt_sh33_cdf97_lossless_progressive")},
+    "qt_bt65x49_bspline_psnr40": R9_QUADTREE + R9_REMOVAL,
+    "qt_sh33_stored": _in_order(R9_QUADTREE[:5] + ["R8.1-3", "R9.1-1"] + R9_QUADTREE[8:] + R9_REMOVAL),
+    "qt_sh17x65_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:] + R9_REMOVAL,
+    "qt_grid_3x3_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3] + R9_REMOVAL,
+    "qt_grid_2x2_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-3],
+    "qt_flat100_rough_edge_lossless": R9_QUADTREE[:5] + R9_QUADTREE[8:-1] + R9_REMOVAL,
     "qt_grid_5x4_stored": R9_QUADTREE[:5] + R9_QUADTREE[8:-1],
     **{n: ["R9.1-1"] for n in ("qt_float32_33x33_stored", "qt_col_1x33_stored", "qt_head5_stored")},
 }

@@ -54,6 +54,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   mrsv::QuadtreeOptions qt;
   qt.threshold = limits.max_error;
   qt.tile_borders = limits.border_rule && field.size[0] >= 4 && field.size[1] >= 4;
-  if (mrsv::quadtreeMesh(field, nullptr, qt, &mesh, &error)) checkTiling(mesh);
+  for (bool remove : {false, true}) {  // the tree's mesh, then after the removal pass (spec 9.7)
+    qt.remove_vertices = remove;
+    if (mrsv::quadtreeMesh(field, nullptr, qt, &mesh, &error)) checkTiling(mesh);
+  }
   return 0;
 }

@@ -29,7 +29,7 @@ ErrorBound errorBoundOf(double value) {
 py::tuple meshGrid(const py::object& source_object, const std::string& method,
                    const std::optional<double>& max_error, const std::optional<uint64_t>& triangles,
                    const std::optional<uint64_t>& tets, int levels, const py::object& byte_limit,
-                   bool border_rule, const std::string& distance, double z_scale) {
+                   bool border_rule, const std::string& distance, double z_scale, bool remove_vertices) {
   if (method != "insertion" && method != "quadtree") throw py::value_error("method= must be 'insertion' or 'quadtree'");
   if (triangles && tets) throw py::value_error("give triangles= or tets=, not both");
   if ((triangles && *triangles == 0) || (tets && *tets == 0))
@@ -37,6 +37,8 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (!max_error && !triangles && !tets) throw py::value_error("give max_error=, triangles= or tets=");
   if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
   if (distance != "mesh" && distance != "trilinear") throw py::value_error("distance= must be 'mesh' or 'trilinear'");
+  if (remove_vertices && method == "insertion" && !max_error)
+    throw py::value_error("remove_vertices=True with method='insertion' needs max_error= (spec 8.8)");
   InsertionLimits limits;
   if (max_error) limits.max_error = errorBoundOf(*max_error);
   limits.max_cells = triangles ? *triangles : tets ? *tets : 0;
@@ -59,6 +61,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (dims == 3 && method == "quadtree") throw py::value_error("the quadtree meshes 2-D grids; use method='insertion'");
   if (dims == 2 && tets) throw py::value_error("a 2-D grid gives triangles: use triangles=");
   if (dims == 3 && triangles) throw py::value_error("a 3-D grid gives tets: use tets=");
+  if (dims == 3 && remove_vertices) throw py::value_error("remove_vertices=True is for 2-D grids");
   if (distance == "trilinear" && (dims == 2 || !max_error))
     throw py::value_error("distance='trilinear' is for 3-D grids with max_error=");
   // The finest stage the bytes and levels= allow (spec 8.7); not refined stage by stage.
@@ -84,11 +87,13 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
       qt.threshold = limits.max_error;
       qt.max_triangles = limits.max_cells;
       qt.tile_borders = limits.max_error.set() && border_rule && field.size[0] >= 4 && field.size[1] >= 4;
+      qt.remove_vertices = remove_vertices;
       ok = quadtreeMesh(field, nullptr, qt, &mesh, &error);
     } else if (ok && dims == 2) {
       TerrainInserter inserter(grid.header.size_x, grid.header.size_y);
       ok = inserter.refine(field, stage.shift, limits, &error);
       if (ok) inserter.mesh(&mesh);
+      if (ok && remove_vertices) ok = removeInnerVertices(field, limits.max_error, &mesh, nullptr, &error);
     } else if (ok) {
       VolumeInserter inserter(grid.header.size_x, grid.header.size_y, grid.header.size_z);
       inserter.setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
@@ -117,15 +122,15 @@ void registerReconstruct(py::module_& m) {
   m.def("mesh_grid", &meshGrid, py::arg("source"), py::kw_only(), py::arg("method") = "insertion",
         py::arg("max_error") = py::none(), py::arg("triangles") = py::none(), py::arg("tets") = py::none(),
         py::arg("levels") = 0, py::arg("bytes") = py::none(), py::arg("border_rule") = true,
-        py::arg("distance") = "mesh", py::arg("z_scale") = 1.0,
+        py::arg("distance") = "mesh", py::arg("z_scale") = 1.0, py::arg("remove_vertices") = false,
         R"doc(An adaptive mesh of a grid stream of integer samples (as 'mrsv mesh').
 
 method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
 (spec 9; 2-D). Stop at max_error (every sample within it), or at triangles=
 (2-D) / tets= (3-D) cells. levels and bytes choose the stage as in decode;
-border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D) and z_scale as
-the CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and
-origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
+border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D), z_scale and
+remove_vertices (2-D: the vertex-removal pass of spec 9.7 and 8.8) as the
+CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
 (N,) float64 samples at the vertices).)doc");
 }
 

@@ -25,15 +25,27 @@ def interpolate(vertices, triangles, values, x, y):
     raise AssertionError(f"({x}, {y}) is in no triangle")
 
 
-@pytest.mark.parametrize("method", ["insertion", "quadtree"])
-def test_terrain_within_max_error(method, terrain, st_helens):
-    vertices, triangles, values = mrsv.mesh_grid(terrain, method=method, max_error=20)
+@pytest.mark.parametrize("method, remove", [("insertion", False), ("insertion", True), ("quadtree", False),
+                                            ("quadtree", True)])
+def test_terrain_within_max_error(method, remove, terrain, st_helens):
+    vertices, triangles, values = mrsv.mesh_grid(terrain, method=method, max_error=20, remove_vertices=remove)
     assert triangles.shape[1] == 3 and len(vertices) == len(values) < st_helens.size / 4
     assert vertices[:, 0].max() == 127 * 30  # spacing from the meta chunk
     grid = vertices[:, :2] / 30
     rng = np.random.default_rng(1)
     for x, y in rng.integers(0, 128, size=(40, 2)):
         assert abs(interpolate(grid, triangles, values, x, y) - st_helens[y, x]) <= 20 + 1e-9
+
+
+def test_removal_pass_has_fewer_triangles(terrain):
+    _, tree, _ = mrsv.mesh_grid(terrain, method="quadtree", max_error=5)
+    _, removed, _ = mrsv.mesh_grid(terrain, method="quadtree", max_error=5, remove_vertices=True)
+    _, inserted, _ = mrsv.mesh_grid(terrain, max_error=5)
+    assert len(removed) < len(inserted) < len(tree)
+    _, inserted_removed, _ = mrsv.mesh_grid(terrain, max_error=5, remove_vertices=True)
+    assert len(inserted_removed) < len(inserted)
+    with pytest.raises(ValueError, match="remove_vertices"):
+        mrsv.mesh_grid(terrain, triangles=500, remove_vertices=True)
 
 
 def test_cell_budget_and_levels(terrain):

@@ -245,6 +245,36 @@ expect 0 "$mrsv" mesh --quiet --max-error 5 --canonical "$work/p.mrsv" "$work/p2
 if cmp -s "$work/p1.bin" "$work/p2.bin" && head -c 26 "$work/p1.bin" | grep -q "mrsv-canonical-grid-mesh 1"; then ok; else bad "canonical mesh output not repeatable"; fi
 expect 0 "$mrsv" mesh --max-error 5 --progressive "$work/p.mrsv" "$work/pp.ply"; stderr_has "stage 1 of"
 expect 0 "$mrsv" mesh --quiet --method quadtree --max-error 5 "$work/p.mrsv" "$work/q.off"
+expect 0 "$mrsv" mesh --method quadtree --max-error 5 --remove-vertices "$work/p.mrsv" "$work/qr.off"
+stderr_has "vertices removed after the quadtree"
+if [ "$(sed -n 2p "$work/qr.off" | cut -d' ' -f2)" -lt "$(sed -n 2p "$work/q.off" | cut -d' ' -f2)" ]; then ok
+else bad "the removal pass left no fewer triangles"; fi
+expect 0 "$mrsv" mesh --max-error 5 --remove-vertices "$work/p.mrsv" "$work/ir.obj"; stderr_has "vertices removed after insertion"
+# spec 8.1 regions: two boxes of a tiled stream sharing the column x = 70 meet
+# without cracks, in the whole grid's frame, and a box's mesh is the mesh of
+# its samples coded alone.
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --tile 64 --max-error 2 --meta spacing=30,-30 \
+  "$crop" "$work/pt.mrsv"
+expect 0 "$mrsv" mesh --quiet --max-error 5 --region 0,0,71,128 "$work/pt.mrsv" "$work/ra.obj"
+expect 0 "$mrsv" mesh --quiet --max-error 5 --region 70,0,128,128 "$work/pt.mrsv" "$work/rb.obj"
+if python3 - "$work/ra.obj" "$work/rb.obj" <<'PY'
+import sys
+def side(path):
+    return {tuple(round(float(t)) for t in l.split()[1:4]) for l in open(path)
+            if l.startswith("v ") and round(float(l.split()[1])) == 70 * 30}
+a, b = side(sys.argv[1]), side(sys.argv[2])
+sys.exit(0 if a == b and len(a) > 2 else 1)
+PY
+then ok; else bad "two regions sharing a column do not share its vertices"; fi
+expect 0 "$mrsv" decode --quiet --region 70,0,128,128 "$work/pt.mrsv" "$work/rb.raw"
+expect 0 "$mrsv" encode --quiet --dims 58,128 --type int16 --lossless "$work/rb.raw" "$work/rb.mrsv"
+expect 0 "$mrsv" mesh --quiet --max-error 5 --canonical "$work/rb.mrsv" "$work/rb1.can"
+expect 0 "$mrsv" mesh --quiet --max-error 5 --region 70,0,128,128 --canonical "$work/pt.mrsv" "$work/rb2.can"
+if cmp -s "$work/rb1.can" "$work/rb2.can"; then ok; else bad "a region's mesh differs from the mesh of its samples"; fi
+expect 2 "$mrsv" mesh --max-error 5 --region 0,0,129,128 "$work/pt.mrsv" "$work/x.obj"; stderr_has "beyond"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error 5 --region 0,0,64,64 --progressive "$work/pt.mrsv" "$work/x.obj"; one_line_stderr
+expect 2 "$mrsv" mesh --max-error 5 --progressive --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "--remove-vertices"; one_line_stderr
+expect 2 "$mrsv" mesh --triangles 500 --remove-vertices "$work/p.mrsv" "$work/x.obj"; stderr_has "needs --max-error"; one_line_stderr
 expect 0 "$mrsv" mesh --quiet --triangles 500 "$work/p.mrsv" "$work/t.obj"
 expect 0 "$mrsv" mesh --quiet --levels 2 --max-error 5 "$work/p.mrsv" "$work/l.obj"
 expect 2 "$mrsv" mesh "$work/p.mrsv" "$work/x.obj"; stderr_has "give --max-error"; one_line_stderr

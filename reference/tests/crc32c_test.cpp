@@ -37,5 +37,16 @@ TEST(Crc32c, IncrementalEqualsOneShotAtEverySplit) {
     EXPECT_EQ(crc32c(crc32c(0, p, split), p + split, s.size() - split), whole) << split;
 }
 
+// The instruction path and the tables agree on every length and alignment.
+TEST(Crc32c, HardwareAndTablesAgree) {
+  std::vector<uint8_t> data(4099);
+  uint32_t x = 12345;
+  for (uint8_t& b : data) b = static_cast<uint8_t>((x = x * 1103515245u + 12345u) >> 24);
+  for (size_t start : {0u, 1u, 3u, 7u})
+    for (size_t size : {0u, 1u, 7u, 8u, 9u, 63u, 64u, 1000u, 4090u})
+      EXPECT_EQ(crc32c(0x1234u, data.data() + start, size), crc32cPortable(0x1234u, data.data() + start, size))
+          << start << " " << size;
+}
+
 }  // namespace
 }  // namespace mrsv

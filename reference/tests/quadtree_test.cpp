@@ -17,6 +17,7 @@
 
 #include "grid_mesh_checks.h"
 #include "mrsv/encode.h"
+#include "mrsv/terrain_insertion.h"
 #include "reconstruct/quadtree_tree.h"
 #include "shared_data.h"
 
@@ -64,10 +65,11 @@ int64_t worstOver(const SampleField& f, const GridMesh& m, const ErrorBound& e) 
   return test::withinBoundEverywhere(f, m, e, &worst) ? 0 : 1;
 }
 
-GridMesh meshAt(const SampleField& f, int64_t e, bool tiles = false) {
+GridMesh meshAt(const SampleField& f, int64_t e, bool tiles = false, bool remove = false) {
   QuadtreeOptions o;
   o.threshold = ErrorBound{e, 1};
   o.tile_borders = tiles;
+  o.remove_vertices = remove;
   GridMesh m;
   std::string error;
   EXPECT_TRUE(quadtreeMesh(f, nullptr, o, &m, &error)) << error;
@@ -174,6 +176,76 @@ TEST(Quadtree, MaxErrorHonouredOnRealTerrains) {
   }
 }
 
+// The grid points of a mesh on the grid's border, sorted.
+std::vector<std::array<uint32_t, 3>> borderPoints(const GridMesh& m) {
+  std::vector<std::array<uint32_t, 3>> out;
+  for (const auto& p : m.points)
+    if (p[0] == 0 || p[1] == 0 || p[0] + 1 == m.size[0] || p[1] + 1 == m.size[1]) out.push_back(p);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// spec 9.7: after the removal pass the mesh is still crack-free and within E
+// everywhere, its border is the tree's (so tiles still meet), and it has at
+// most 1.5 x the triangles of Delaunay insertion (issue 22; measured 0.5 to
+// 0.75 x, D83).
+TEST(Quadtree, RemovalPassKeepsTheBoundAndTheBorder) {
+  struct Crop { const char* name; uint32_t x0, y0, w, h; };
+  const Crop crops[] = {{"mt_st_helens", 0, 0, 317, 460}, {"big_tujunga", 300, 100, 400, 300},
+                        {"mt_fuji", 441, 304, 460, 378}};
+  for (const Crop& c : crops) {
+    const SampleField f = terrainWindow(c.name, c.x0, c.y0, c.w, c.h);
+    for (int64_t e : {1, 5, 20, 50})
+      for (bool tiles : {false, true}) {
+        SCOPED_TRACE(std::string(c.name) + " E=" + std::to_string(e) + (tiles ? " tiles" : ""));
+        const GridMesh tree = meshAt(f, e, tiles);
+        const GridMesh m = meshAt(f, e, tiles, true);
+        expectCrackFree(m);
+        EXPECT_EQ(worstOver(f, m, ErrorBound{e, 1}), 0);
+        EXPECT_EQ(borderPoints(m), borderPoints(tree));
+        EXPECT_LT(m.cells.size(), tree.cells.size());
+        InsertionLimits limits;
+        limits.max_error = ErrorBound{e, 1};
+        limits.border_rule = tiles;
+        TerrainInserter inserter(f.size[0], f.size[1]);
+        std::string error;
+        ASSERT_TRUE(inserter.refine(f, 0, limits, &error)) << error;
+        EXPECT_LE(m.cells.size(), inserter.cellCount() * 3 / 2);
+      }
+  }
+}
+
+// spec 9.7: a vertex whose link has more than 64 points stays. A flat n x n
+// grid meshed as a fan from its centre to every border point: the centre's
+// link is the border, 4 (n - 1) points, and every ear is within E = 0.
+TEST(Quadtree, RemovalLeavesStarsOfMoreThan64Points) {
+  for (uint32_t n : {17u, 19u}) {
+    SampleField flat;
+    flat.size[0] = flat.size[1] = n, flat.size[2] = 1;
+    flat.values.assign(size_t{n} * n, 3);
+    GridMesh fan;
+    fan.dims = 2;
+    fan.size[0] = fan.size[1] = n, fan.size[2] = 1;
+    std::vector<std::array<uint32_t, 3>> ring;  // the border, counter-clockwise
+    for (uint32_t x = 0; x + 1 < n; ++x) ring.push_back({x, 0, 0});
+    for (uint32_t y = 0; y + 1 < n; ++y) ring.push_back({n - 1, y, 0});
+    for (uint32_t x = n - 1; x > 0; --x) ring.push_back({x, n - 1, 0});
+    for (uint32_t y = n - 1; y > 0; --y) ring.push_back({0, y, 0});
+    fan.points = ring;
+    fan.points.push_back({n / 2, n / 2, 0});
+    fan.values.assign(fan.points.size(), 3);
+    const uint32_t centre = static_cast<uint32_t>(ring.size());
+    for (uint32_t k = 0; k < centre; ++k) fan.cells.push_back({centre, k, (k + 1) % centre, 0});
+    ASSERT_EQ(test::triangulationProblem(fan), "");
+    uint64_t removed = 0;
+    std::string error;
+    ASSERT_TRUE(removeInnerVertices(flat, ErrorBound{0, 1}, &fan, &removed, &error)) << error;
+    EXPECT_EQ(removed, ring.size() <= 64 ? 1u : 0u) << n;
+    EXPECT_EQ(test::triangulationProblem(fan), "");
+    EXPECT_EQ(fan.cells.size(), ring.size() <= 64 ? ring.size() - 2 : ring.size());
+  }
+}
+
 TEST(Quadtree, FractionalBoundAndFlatGrid) {
   const SampleField f = terrainWindow("mt_st_helens", 10, 20, 129, 65);
   QuadtreeOptions o;
@@ -220,10 +292,11 @@ TEST(Quadtree, TileBordersMatchOnAdjacentWindows) {
 
 TEST(Quadtree, DeterministicCanonicalOutput) {
   const SampleField f = terrainWindow("big_tujunga", 0, 0, 513, 513);
-  for (bool tiles : {false, true}) {
-    const auto first = canonicalGridMeshOutput(meshAt(f, 5, tiles));
-    EXPECT_EQ(first, canonicalGridMeshOutput(meshAt(f, 5, tiles)));
-  }
+  for (bool tiles : {false, true})
+    for (bool remove : {false, true}) {
+      const auto first = canonicalGridMeshOutput(meshAt(f, 5, tiles, remove));
+      EXPECT_EQ(first, canonicalGridMeshOutput(meshAt(f, 5, tiles, remove)));
+    }
 }
 
 TEST(Quadtree, MaxTrianglesSearch) {

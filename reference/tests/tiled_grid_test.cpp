@@ -301,6 +301,33 @@ TEST(TiledGrid, RowsOfTilesGiveTheWholeDecode) {
   EXPECT_EQ(e.message, expected.message);
 }
 
+// Rows are runs of the output: a grid one tile high, or a volume one brick
+// deep, is one row (rows along x or y there would interleave in the output);
+// a reduced decode whose tiles miss the 2^K lattice is refused here too.
+TEST(TiledGrid, RowsAreRunsOfTheOutput) {
+  Error e;
+  int rows = 0, axis = -1;
+  const test::SharedGrid g = stHelens();
+  const std::vector<uint8_t> one_high = encodeTiled(g, 64, 460, 1, lossless());
+  DecodeOptions two;
+  two.threads = 2;
+  EXPECT_EQ(decodeByRows(one_high, two, &e, &rows, &axis), g.samples);
+  EXPECT_TRUE(e.ok());
+  EXPECT_EQ(rows, 1);
+  EXPECT_EQ(axis, 1);
+  const test::SharedGrid v = ctHeadCrop();
+  const std::vector<uint8_t> one_deep = encodeTiled(v, 16, 16, v.header.size_z, lossless());
+  EXPECT_EQ(decodeByRows(one_deep, two, &e, &rows, &axis), v.samples);
+  EXPECT_EQ(rows, 1);
+  EXPECT_EQ(axis, 2);
+  const std::vector<uint8_t> odd = encodeTiled(g, 36, 36, 1, lossless());
+  DecodeOptions reduced;
+  reduced.reduce_levels = 3;
+  EXPECT_TRUE(decodeByRows(odd, reduced, &e, &rows, &axis).empty());
+  EXPECT_EQ(e.status, Status::kInvalidArgument);
+  EXPECT_EQ(rows, 0);
+}
+
 TEST(TiledGrid, IndexAndOrderRulesGiveTheirCodes) {
   test::SharedGrid g = stHelens();
   std::vector<uint8_t> stream = encodeTiled(g, 160, 230, 1, lossless());

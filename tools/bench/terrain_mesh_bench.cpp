@@ -148,6 +148,7 @@ int main(int argc, char** argv) {
     SampleField field;
   };
   std::vector<Crop> crops;
+  std::vector<std::string> removal_rows;  // printed after the insertion table
   std::printf("## Delaunay insertion against Delatin (every sample checked)\n\n");
   std::printf("| terrain | max error | Delatin triangles | MRSV triangles | ratio | Delatin ms | MRSV ms | speed-up | Delatin worst | MRSV worst | progressive triangles | progressive / single |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -234,11 +235,30 @@ int main(int argc, char** argv) {
                   ours_ok ? "" : " (over)", prog.cells.size(), prog_ok ? "" : " (over)",
                   double(prog.cells.size()) / ours.cells.size());
       std::fflush(stdout);
+      // The vertex-removal pass after insertion (spec 8.8), timed with the insertion.
+      GridMesh removed = ours;
+      const double t_pass = now();
+      removeInnerVertices(field, bound, &removed, nullptr, &error);
+      const double pass_ms = (now() - t_pass) * 1000;
+      bool removed_ok = false;
+      const double removed_worst = worstError(field, removed, bound, &removed_ok);
+      const bool peer_ok = k < delatin.size() && delatin[k].ok;
+      char line[320];
+      std::snprintf(line, sizeof line, "| %s | %s m | %zu | %.3f | %.3f | %.0f | %s | %.2f%s |\n", t.label.c_str(),
+                    errors[k].c_str(), removed.cells.size(), double(removed.cells.size()) / ours.cells.size(),
+                    peer_ok ? double(removed.cells.size()) / delatin[k].mesh.cells.size() : 0.0, ms + pass_ms,
+                    peer_ok ? (std::to_string(delatin[k].ms / (ms + pass_ms)).substr(0, 4) + "x").c_str() : "n/a",
+                    removed_worst, removed_ok ? "" : " (over)");
+      removal_rows.push_back(line);
     }
   }
+  std::printf("\n## Insertion with the vertex-removal pass (spec 8.8) against Delatin (every sample checked)\n\n");
+  std::printf("| terrain | max error | triangles | / insertion | / Delatin | ms (insertion + pass) | speed-up over Delatin | worst |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& row : removal_rows) std::printf("%s", row.c_str());
   std::printf("\n## Quadtree against MARTINI and insertion on 2^k + 1 crops (every sample checked)\n\n");
-  std::printf("| crop | max error | MARTINI triangles | quadtree triangles | insertion triangles | quadtree / insertion | MARTINI ms | quadtree ms | speed-up | MARTINI worst | quadtree worst |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| crop | max error | MARTINI triangles | quadtree triangles | insertion triangles | quadtree / insertion | MARTINI ms | quadtree ms | speed-up | MARTINI worst | quadtree worst | with removal (9.7) triangles | / insertion | ms | worst |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Crop& c : crops) {
     std::vector<PeerResult> martini;
     if (have_peers) martini = runPeer(peers, "martini", c.field, errors, scratch);
@@ -257,6 +277,16 @@ int main(int argc, char** argv) {
       }
       bool quad_ok = false;
       const double quad_worst = worstError(c.field, quad, bound, &quad_ok);
+      GridMesh removal;
+      qt.remove_vertices = true;
+      double removal_ms = 1e30;
+      for (int rep = 0; rep < 3; ++rep) {
+        const double t0 = now();
+        quadtreeMesh(c.field, nullptr, qt, &removal, &error);
+        removal_ms = std::min(removal_ms, (now() - t0) * 1000);
+      }
+      bool removal_ok = false;
+      const double removal_worst = worstError(c.field, removal, bound, &removal_ok);
       InsertionLimits limits;
       limits.max_error = bound;
       TerrainInserter ins(c.field.size[0], c.field.size[1]);
@@ -271,9 +301,11 @@ int main(int argc, char** argv) {
         std::snprintf(peer_time, sizeof peer_time, "| %.1f | %.1f | %.1fx | %.2f%s ", martini[k].ms, best_ms,
                       martini[k].ms / best_ms, worst, within ? "" : " (over)");
       }
-      std::printf("| %s | %s m %s| %zu | %llu | %.2f %s| %.2f%s |\n", c.label.c_str(), errors[k].c_str(), peer,
-                  quad.cells.size(), (unsigned long long)ins.cellCount(), double(quad.cells.size()) / ins.cellCount(),
-                  peer_time, quad_worst, quad_ok ? "" : " (over)");
+      std::printf("| %s | %s m %s| %zu | %llu | %.2f %s| %.2f%s | %zu | %.2f | %.1f | %.2f%s |\n", c.label.c_str(),
+                  errors[k].c_str(), peer, quad.cells.size(), (unsigned long long)ins.cellCount(),
+                  double(quad.cells.size()) / ins.cellCount(), peer_time, quad_worst, quad_ok ? "" : " (over)",
+                  removal.cells.size(), double(removal.cells.size()) / ins.cellCount(), removal_ms, removal_worst,
+                  removal_ok ? "" : " (over)");
       std::fflush(stdout);
     }
   }

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <limits>
 
+#include "mrsv/limits.h"
+
 namespace mrsv::cli {
 namespace {
 bool contains(const std::vector<std::string>& list, const std::string& name) {
@@ -114,6 +116,26 @@ bool parseWholeNumberList(const std::string& text, uint64_t lo, uint64_t hi, std
   }
   return true;
 }
+
+bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
+  std::vector<uint64_t> v;
+  if (!parseWholeNumberList(text, 0, kMaxGridAxis, &v)) {
+    *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
+             std::to_string(kMaxGridAxis);
+    return false;
+  }
+  if (v.size() != 2 && v.size() != 4 && v.size() != 6) {
+    *error = "--region '" + text + "': give X0,X1 or X0,Y0,X1,Y1 or X0,Y0,Z0,X1,Y1,Z1";
+    return false;
+  }
+  const size_t dims = v.size() / 2;
+  for (size_t a = 0; a < dims; ++a) {
+    region->lo[a] = static_cast<uint32_t>(v[a]);
+    region->hi[a] = static_cast<uint32_t>(v[dims + a]);
+  }
+  return true;
+}
+
 
 bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error) {
   char* end = nullptr;

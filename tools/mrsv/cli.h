@@ -9,6 +9,7 @@
 #include "mrsv/grid.h"
 #include "mrsv/metadata.h"
 #include "mrsv/status.h"
+#include "mrsv/tiled_grid.h"
 
 namespace mrsv::cli {
 
@@ -53,6 +54,9 @@ bool parseUint64(const std::string& text, uint64_t* out);
 bool parseDouble(const std::string& text, double* out);
 // "A[,B[,...]]" of whole numbers, each from lo to hi. False on anything else.
 bool parseWholeNumberList(const std::string& text, uint64_t lo, uint64_t hi, std::vector<uint64_t>* out);
+// "X0,Y0[,Z0],X1,Y1[,Z1]" (--region): a half-open box of samples; false with
+// `error` naming the rule when it is not one.
+bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error);
 // The --nodata text as the bit pattern of a sample of `type` (spec 3.1
 // nodata_bits); false with `error` set when it is not a value of that type.
 bool parseNodata(const std::string& text, SampleType type, uint64_t* bits, std::string* error);

@@ -196,26 +196,6 @@ Error decodeInput(StreamInput* input, const std::vector<uint8_t>& head, StreamDe
   return e;
 }
 
-// "X0,Y0[,Z0],X1,Y1[,Z1]": a half-open box of samples.
-bool parseRegionBox(const std::string& text, GridRegion* region, std::string* error) {
-  std::vector<uint64_t> v;
-  if (!parseWholeNumberList(text, 0, kMaxGridAxis, &v)) {
-    *error = "--region '" + text + "': each coordinate must be a whole number from 0 to " +
-             std::to_string(kMaxGridAxis);
-    return false;
-  }
-  if (v.size() != 2 && v.size() != 4 && v.size() != 6) {
-    *error = "--region '" + text + "': give X0,X1 or X0,Y0,X1,Y1 or X0,Y0,Z0,X1,Y1,Z1";
-    return false;
-  }
-  const size_t dims = v.size() / 2;
-  for (size_t a = 0; a < dims; ++a) {
-    region->lo[a] = static_cast<uint32_t>(v[a]);
-    region->hi[a] = static_cast<uint32_t>(v[dims + a]);
-  }
-  return true;
-}
-
 }  // namespace
 
 int runDecode(int argc, char** argv) {

@@ -11,6 +11,7 @@
 #include "mrsv/grid_mesh.h"
 #include "mrsv/mesh_formats.h"
 #include "mrsv/quadtree_mesh.h"
+#include "mrsv/tiled_grid.h"
 #include "mrsv/terrain_insertion.h"
 #include "mrsv/volume_insertion.h"
 #include "mrsv/tet_formats.h"
@@ -39,6 +40,11 @@ const char kMeshHelp[] =
     "                        with at most N (quadtree)\n"
     "  --tets N              3-D: stop at N tets\n"
     "  --epsilon X           quadtree: the paper's wavelet criterion threshold\n"
+    "  --remove-vertices     2-D: after the mesh, remove every inner vertex whose star\n"
+    "                        can be re-triangulated within E (spec 9.7; 8.8 after\n"
+    "                        insertion, which then needs --max-error and no\n"
+    "                        --progressive): 0.5 to 0.75 x insertion's triangles, for\n"
+    "                        2 to 8 x the time\n"
     "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
     "                        mesh (default; fewer tets at the same error, D62) or the\n"
     "                        paper's, to the trilinear interpolant of its cell\n"
@@ -51,6 +57,10 @@ const char kMeshHelp[] =
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived\n"
     "  --levels K            use the stream without its K finest levels\n"
+    "  --region X0,Y0[,Z0],X1,Y1[,Z1]\n"
+    "                        mesh only the samples of this half-open box (a tiled\n"
+    "                        stream reads only the tiles it touches; spec 8.1): two\n"
+    "                        boxes sharing a side meet without cracks (border rule)\n"
     "  --z-scale S           2-D: heights are sample x S (default 1)\n"
     "  --canonical           write the canonical output of spec 8.2 instead of a mesh\n"
     "  --quiet               no progress or summary on stderr\n"
@@ -78,8 +88,8 @@ int runMesh(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance"},
-                   {"progressive", "no-border-rule", "canonical", "quiet", "help"},
+                  {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance", "region"},
+                   {"progressive", "no-border-rule", "remove-vertices", "canonical", "quiet", "help"},
                    {}},
                   &error))
     return fail(cmd, error + " (see 'mrsv mesh --help')", kExitUsage);
@@ -111,6 +121,18 @@ int runMesh(int argc, char** argv) {
                 kExitUsage);
   if (req.method == "insertion" && args.has("epsilon"))
     return fail(cmd, "--epsilon is for --method quadtree", kExitUsage);
+  const bool remove_vertices = args.flag("remove-vertices");
+  if (remove_vertices && req.method == "quadtree" && args.has("epsilon"))
+    return fail(cmd, "--remove-vertices needs --max-error or --triangles, not --epsilon", kExitUsage);
+  if (remove_vertices && req.method == "insertion" && (!req.limits.max_error.set() || req.progressive))
+    return fail(cmd, "--remove-vertices with --method insertion needs --max-error and no --progressive (spec 8.8)",
+                kExitUsage);
+  GridRegion region;
+  const bool by_region = args.has("region");
+  if (by_region && !parseRegionBox(args.value("region"), &region, &error)) return fail(cmd, error, kExitUsage);
+  if (by_region && (req.progressive || args.has("levels") || args.has("epsilon")))
+    return fail(cmd, "--region meshes the region's samples once: not with --progressive, --levels or --epsilon",
+                kExitUsage);
   uint64_t byte_limit = UINT64_MAX, levels = 0;
   if (args.has("bytes") && !parseUint64(args.value("bytes"), &byte_limit))
     return fail(cmd, "--bytes must be a whole number", kExitUsage);
@@ -123,8 +145,16 @@ int runMesh(int argc, char** argv) {
   const std::string distance = args.has("distance") ? args.value("distance") : "mesh";
   if (distance != "mesh" && distance != "trilinear") return fail(cmd, "--distance must be mesh or trilinear", kExitUsage);
 
+  // A region of a whole file reads through the file (a tiled stream: the tiles
+  // the box touches); anything else reads the bytes first.
   std::vector<uint8_t> bytes;
-  if (!readWholeFile(in, &bytes, &error)) return fail(cmd, in + ": " + error, kExitIo);
+  std::unique_ptr<ByteSource> file_source;
+  if (by_region && !args.has("bytes")) {
+    file_source = openFileByteSource(in, &error);
+    if (!file_source) return fail(cmd, in + ": " + error, kExitIo);
+  } else if (!readWholeFile(in, &bytes, &error)) {
+    return fail(cmd, in + ": " + error, kExitIo);
+  }
   DecodeOptions options;
   options.void_values = true;
   if (byte_limit < bytes.size()) {
@@ -133,7 +163,21 @@ int runMesh(int argc, char** argv) {
     options.container.allow_partial_tail = true;
   }
   DecodedGrid grid;
-  if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) return reportError(cmd, in, e);
+  if (by_region) {
+    // spec 8.1: the field is the region decode's (11.5), a grid of the box's sizes.
+    MemoryByteSource memory(bytes.data(), bytes.size());
+    ByteSource& source = file_source ? *file_source : memory;
+    if (Error e = decodeGridRegion(source, region, options, &grid); !e.ok()) {
+      if (e.status == Status::kInvalidArgument)
+        return fail(cmd, in + ": --region " + args.value("region") + ": " + e.message, kExitUsage);
+      return reportError(cmd, in, e);
+    }
+    grid.header.size_x = grid.output_size[0];
+    grid.header.size_y = grid.output_size[1];
+    grid.header.size_z = grid.output_size[2];
+  } else if (Error e = decodeGrid(bytes.data(), bytes.size(), options, &grid); !e.ok()) {
+    return reportError(cmd, in, e);
+  }
   if (!grid.has_samples) return fail(cmd, in + ": the stream holds no samples yet (no band in the bytes read)", kExitInvalidData);
   const int dims = grid.header.num_dims;
   if (dims == 3 && req.method == "quadtree")
@@ -141,6 +185,7 @@ int runMesh(int argc, char** argv) {
   if (dims == 2 && args.has("tets")) return fail(cmd, in + ": a 2-D grid gives triangles: use --triangles", kExitUsage);
   if (dims == 3 && args.has("triangles")) return fail(cmd, in + ": a 3-D grid gives tets: use --tets", kExitUsage);
   if (dims == 2 && args.has("distance")) return fail(cmd, in + ": --distance is for 3-D grids", kExitUsage);
+  if (dims == 3 && remove_vertices) return fail(cmd, in + ": --remove-vertices is for 2-D grids", kExitUsage);
   // spec 10.6: the paper's pass inserts what exceeds E; without E it has nothing to
   // compare with, and the mesh would silently be the `mesh` distance's.
   if (distance == "trilinear" && !args.has("max-error"))
@@ -151,7 +196,9 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, out + ": a 3-D grid gives a tet mesh: write .vtu, .vtk, .mesh or .node", kExitUsage);
 
   // spec 8.7: the stages, less the K finest levels.
-  std::vector<ReconstructionStage> stages = reconstructionStages(grid, bytes.size(), unsigned(levels));
+  std::vector<ReconstructionStage> stages =
+      by_region ? std::vector<ReconstructionStage>{{bytes.size(), 0}}
+                : reconstructionStages(grid, bytes.size(), unsigned(levels));
   if (stages.empty() && grid.header.coding == GridCoding::kTiled)
     return fail(cmd, in + ": --levels is not defined for tiled grids in this version (spec 8.7 stages are the "
                           "levels of one wavelet pyramid); mesh the whole grid or decode --levels first",
@@ -173,6 +220,7 @@ int runMesh(int argc, char** argv) {
       volume = std::make_unique<VolumeInserter>(grid.header.size_x, grid.header.size_y, grid.header.size_z);
       volume->setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
     }
+    SampleField field;  // the last stage's, for the removal pass
     for (size_t k = 0; k < stages.size(); ++k) {
       DecodedGrid prefix;
       const DecodedGrid* source = &grid;
@@ -181,7 +229,6 @@ int runMesh(int argc, char** argv) {
           return reportError(cmd, in, e);
         source = &prefix;
       }
-      SampleField field;
       if (!sampleFieldFromGrid(*source, &field, &error)) return fail(cmd, in + ": " + error, kExitInvalidData);
       Progress progress("mesh", req.quiet);
       const uint64_t goal = req.limits.max_cells;
@@ -210,6 +257,12 @@ int runMesh(int argc, char** argv) {
     }
     if (terrain) terrain->mesh(&mesh);
     else volume->mesh(&mesh);
+    if (remove_vertices) {
+      uint64_t removed = 0;
+      if (!removeInnerVertices(field, req.limits.max_error, &mesh, &removed, &error))
+        return fail(cmd, in + ": " + error, kExitInvalidData);
+      if (!req.quiet) std::fprintf(stderr, "mrsv mesh: %llu vertices removed after insertion\n", (unsigned long long)removed);
+    }
   } else if (req.method == "quadtree") {
     // The quadtree is bottom-up (paper 4): one stage, the last.
     const uint64_t stage_bytes = stages.back().bytes;
@@ -235,12 +288,16 @@ int runMesh(int argc, char** argv) {
       qt.tile_borders = req.limits.max_error.set() && req.limits.border_rule && field.size[0] >= 4 && field.size[1] >= 4;
     }
     qt.max_triangles = req.limits.max_cells;
+    qt.remove_vertices = remove_vertices;
     QuadtreeReport report;
     if (!quadtreeMesh(field, args.has("epsilon") ? &details : nullptr, qt, &mesh, &error, &report))
       return fail(cmd, in + ": " + error, kExitInvalidData);
     if (!req.quiet && qt.max_triangles)
       std::fprintf(stderr, "mrsv mesh: quadtree threshold %lld/%lld for at most %llu triangles\n",
                    (long long)report.threshold.num, (long long)report.threshold.den, (unsigned long long)qt.max_triangles);
+    if (!req.quiet && qt.remove_vertices)
+      std::fprintf(stderr, "mrsv mesh: %llu vertices removed after the quadtree in %u passes\n",
+                   (unsigned long long)report.vertices_removed, report.removal_passes);
   } else {
     return fail(cmd, in + ": --method " + req.method + " on a " + std::to_string(dims) + "-D grid is not available in this build",
                 kExitUsage);
@@ -254,6 +311,8 @@ int runMesh(int argc, char** argv) {
     geometry.z_scale = z_scale;
     if (!gridMeshGeometryFromMetadata(grid.metadata, dims, &geometry, &error))
       return fail(cmd, in + ": " + error, kExitInvalidData);
+    if (by_region)  // positions in the whole grid's frame, so that adjacent regions meet
+      for (int a = 0; a < 3; ++a) geometry.origin[a] += double(region.lo[a]) * geometry.spacing[a];
     if (dims == 2) {
       TriangleMesh tin = gridMeshToTriangles(mesh, geometry);
       if (out.size() < 4 || out.compare(out.size() - 4, 4, ".ply") != 0) tin.scalars.clear();

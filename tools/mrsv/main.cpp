@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "heap_tuning.h"
 #include "mrsv/container.h"
 
 namespace {
@@ -45,6 +46,7 @@ const Command kCommands[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrsv::cli::keepTileBuffersInTheHeap();
   if (argc < 2) {
     std::fputs(kHelp, stderr);
     return mrsv::cli::kExitUsage;

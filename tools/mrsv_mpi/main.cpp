@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "heap_tuning.h"
 #include "mrsv/encode.h"
 #include "mrsv/file_io.h"
 #include "mrsv/raw_grid.h"
@@ -359,6 +360,7 @@ int runDecode(int argc, char** argv) {
 }  // namespace mrsv::mpi
 
 int main(int argc, char** argv) {
+  mrsv::cli::keepTileBuffersInTheHeap();
   MPI_Init(&argc, &argv);
   MPI_Comm_rank(MPI_COMM_WORLD, &mrsv::mpi::rank);
   MPI_Comm_size(MPI_COMM_WORLD, &mrsv::mpi::ranks);

@@ -22,7 +22,9 @@ bool writeFileAtomically(const std::string& path, const std::vector<uint8_t>& by
 
 // A file written piece by piece under a temporary name beside `path` and
 // renamed over it by commit(); without commit() (an error on the way) the
-// temporary file is removed, so no half-written output is ever left.
+// temporary file is removed, so no half-written output is ever left. The
+// disk writes start as the pieces arrive (every 8 MiB), so that commit()'s
+// flush waits for the last ones only.
 class AtomicFileWriter : public ByteSink {
  public:
   ~AtomicFileWriter() override;
@@ -33,6 +35,7 @@ class AtomicFileWriter : public ByteSink {
  private:
   std::string path_, temp_, error_;
   int fd_ = -1;
+  uint64_t written_ = 0, flushing_from_ = 0;  // bytes written; the first not yet sent to the disk
 };
 
 // The samples of a headerless raw grid file (x fastest, then y, then z), read

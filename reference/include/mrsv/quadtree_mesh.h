@@ -60,12 +60,17 @@ struct QuadtreeOptions {
   ErrorBound threshold;
   uint64_t max_triangles = 0;  // > 0: search the threshold (spec 9.6)
   bool tile_borders = false;   // spec 9.5; kMaxError only, grids of at least 4 x 4
+  // spec 9.7 (kMaxError only): interior vertices removed after the tree while
+  // every triangle stays within E; 0.5 to 0.75 x insertion's triangles (D83).
+  bool remove_vertices = false;
 };
 
 // What the search of max_triangles settled on (null-safe to ignore).
 struct QuadtreeReport {
   ErrorBound threshold;  // the threshold the mesh was made with
   uint32_t rounds = 0;   // refinement rounds of the max-error tree (spec 9.4)
+  uint64_t vertices_removed = 0;  // by the vertex-removal pass (spec 9.7)
+  uint32_t removal_passes = 0;
 };
 
 // Meshes a 2-D field (at least 2 x 2 samples). `details` is required by the
@@ -74,5 +79,13 @@ struct QuadtreeReport {
 bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
                   const QuadtreeOptions& options, GridMesh* out, std::string* error,
                   QuadtreeReport* report = nullptr);
+
+// The vertex-removal pass of spec 9.7 on any 2-D mesh of `field` whose
+// counter-clockwise triangles tile the grid's rectangle, each edge in two
+// triangles or on the border (a mesh the reconstructors make; other meshes
+// are not checked), with bound E (spec 8.8: after Delaunay insertion). Returns the vertices removed; false with `error` when
+// the mesh is not a 2-D mesh of the field's size or E is not set.
+bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, GridMesh* mesh,
+                         uint64_t* removed, std::string* error);
 
 }  // namespace mrsv

@@ -1,6 +1,12 @@
 #include "common/crc32c.h"
 
 #include <array>
+#include <cstring>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <nmmintrin.h>
+#define MRSV_CRC32C_SSE42 1
+#endif
 
 namespace mrsv {
 namespace {
@@ -25,9 +31,7 @@ struct Tables {
 
 constexpr Tables kTables;
 
-}  // namespace
-
-uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size) {
+uint32_t crc32cTables(uint32_t crc, const uint8_t* data, size_t size) {
   const auto& t = kTables.t;
   crc = ~crc;
   while (size >= 8) {
@@ -43,5 +47,36 @@ uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size) {
   while (size--) crc = (crc >> 8) ^ t[0][(crc ^ *data++) & 0xFF];
   return ~crc;
 }
+
+#ifdef MRSV_CRC32C_SSE42
+// SSE4.2's crc32 instruction computes this very polynomial, eight bytes a step:
+// about 8x the tables' speed, which a decode pays before its first tile (the
+// 63.5 MB mosaic: 40 ms of one thread).
+__attribute__((target("sse4.2"))) uint32_t crc32cSse42(uint32_t crc, const uint8_t* data, size_t size) {
+  uint64_t c = ~crc;
+  while (size >= 8) {
+    uint64_t v;
+    std::memcpy(&v, data, 8);
+    c = _mm_crc32_u64(c, v);
+    data += 8;
+    size -= 8;
+  }
+  uint32_t c32 = static_cast<uint32_t>(c);
+  while (size--) c32 = _mm_crc32_u8(c32, *data++);
+  return ~c32;
+}
+#endif
+
+}  // namespace
+
+uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size) {
+#ifdef MRSV_CRC32C_SSE42
+  static const bool hardware = __builtin_cpu_supports("sse4.2");
+  if (hardware) return crc32cSse42(crc, data, size);
+#endif
+  return crc32cTables(crc, data, size);
+}
+
+uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size) { return crc32cTables(crc, data, size); }
 
 }  // namespace mrsv

@@ -7,6 +7,10 @@
 namespace mrsv {
 
 // Extends `crc` (0 to start) over `size` bytes. crc32c("123456789") == 0xE3069283.
+// The processor's crc32 instruction where it has one (SSE4.2), else tables.
 uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size);
+
+// The table computation alone (tests compare the two).
+uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size);
 
 }  // namespace mrsv

@@ -106,7 +106,19 @@ bool AtomicFileWriter::write(const uint8_t* data, size_t size) {
     }
     data += n;
     size -= static_cast<size_t>(n);
+    written_ += static_cast<uint64_t>(n);
   }
+#ifdef __linux__
+  // Start the writeback of what has piled up, without waiting for it: the
+  // fsync of commit() (64 MiB: 30 ms after a volume's decode) then overlaps
+  // the work that produced the data. Only a hint; errors surface at fsync.
+  constexpr uint64_t kFlushStep = uint64_t{8} << 20;
+  if (error_.empty() && written_ - flushing_from_ >= kFlushStep) {
+    ::sync_file_range(fd_, static_cast<off_t>(flushing_from_), static_cast<off_t>(written_ - flushing_from_),
+                      SYNC_FILE_RANGE_WRITE);
+    flushing_from_ = written_;
+  }
+#endif
   return error_.empty();
 }
 

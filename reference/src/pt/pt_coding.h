@@ -89,6 +89,10 @@ inline int degreeContext(size_t degree) { return static_cast<int>(std::min<size_
 inline uint32_t indexIn(const std::vector<uint32_t>& list, uint32_t value) {
   return static_cast<uint32_t>(std::find(list.begin(), list.end(), value) - list.begin());
 }
+// The same among the first n entries (n when absent).
+inline uint32_t indexIn(const std::vector<uint32_t>& list, uint32_t n, uint32_t value) {
+  return static_cast<uint32_t>(std::find(list.begin(), list.begin() + n, value) - list.begin());
+}
 
 // spec 7.7.2 cut(): the walk through the link of vs, as local link vertices.
 // Encoding: `walk` and `closed` hold the cut to code, with its first vertex
@@ -102,7 +106,7 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
   std::vector<uint32_t> given;
   if (Coder::kEncoding) given = w;
   w.clear();
-  s->walk_position.assign(m, 0);
+  zeroedPrefix(&s->walk_position, m);
   auto visit = [&](uint32_t v) {
     s->walk_position[v] = 1;
     w.push_back(v);
@@ -116,12 +120,13 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
     if (!codeSmall(coder, ctx.cut_start, ctx.escape, &c0)) return "cut_start: length prefix of 31 bits";
     if (c0 >= m) return "cut_start " + std::to_string(c0) + " is not below the link's " + std::to_string(m) + " vertices";
     c0 = link.localOfRank(c0);  // the c0-th smallest vertex number
-    if (!link.rotationFromLowest(c0, &s->rotation)) return "the link is not a manifold at c_0";
-    uint32_t j = Coder::kEncoding ? indexIn(s->rotation, given[1]) : 0;
-    if (Coder::kEncoding && (given.size() < 3 || j == s->rotation.size())) return "the cut is not a walk in the link";
-    if (!codeSmall(coder, ctx.cut_first[degreeContext(s->rotation.size())], ctx.escape, &j))
+    const uint32_t d0 = link.rotationFromLowestInto(c0, &s->rotation);
+    if (d0 == 0) return "the link is not a manifold at c_0";
+    uint32_t j = Coder::kEncoding ? indexIn(s->rotation, d0, given[1]) : 0;
+    if (Coder::kEncoding && (given.size() < 3 || j == d0)) return "the cut is not a walk in the link";
+    if (!codeSmall(coder, ctx.cut_first[degreeContext(d0)], ctx.escape, &j))
       return "cut_first: length prefix of 31 bits";
-    if (j >= s->rotation.size()) return "cut_first " + std::to_string(j) + " is not below the degree of c_0";
+    if (j >= d0) return "cut_first " + std::to_string(j) + " is not below the degree of c_0";
     visit(c0);
     first = c0;
     prev = c0;
@@ -162,10 +167,10 @@ std::string codeCut(Coder& coder, PtContexts& ctx, const LinkT& link, SplitScrat
       return "";
     }
     if (w.size() > m) return "the cut is longer than the link";
-    if (!link.rotation(cur, prev, &s->rotation)) return "the link is not a manifold along the cut";
-    const uint32_t deg = static_cast<uint32_t>(s->rotation.size());
+    const uint32_t deg = link.rotationInto(cur, prev, &s->rotation);
+    if (deg == 0) return "the link is not a manifold along the cut";
     if (Coder::kEncoding && w.size() >= given.size() + (link.has_boundary ? 0 : 1)) return "the cut is not a walk in the link";
-    uint32_t t = Coder::kEncoding ? indexIn(s->rotation, givenNext(w.size() - 1)) - 1 : 0;
+    uint32_t t = Coder::kEncoding ? indexIn(s->rotation, deg, givenNext(w.size() - 1)) - 1 : 0;
     if (Coder::kEncoding && (t + 1 == 0 || t + 1 >= deg)) return "the cut is not a walk in the link";
     if (!codeSmall(coder, ctx.turn[degreeContext(deg)], ctx.escape, &t)) return "turn: length prefix of 31 bits";
     if (t + 1 >= deg) return "turn " + std::to_string(t) + " is not below degree - 1 = " + std::to_string(deg - 1);
@@ -272,7 +277,7 @@ std::string codeBaseMesh(Coder& coder, PtContexts& ctx, const PtHeader& h, TetCo
 }
 
 inline int flagContext(const TetComplex& mesh, uint32_t v) {
-  return static_cast<int>(std::min<size_t>(mesh.incident[v].size() / 2, kFlagContexts - 1));
+  return static_cast<int>(std::min<size_t>(mesh.incident.size(v) / 2, kFlagContexts - 1));
 }
 
 }  // namespace mrsv::pt

@@ -29,7 +29,7 @@ uint64_t memoryNeeded(const PtHeader& h) {
 // spec 7.7 one split record: the cut, then vt's position and values.
 std::string decodeSplit(DecodingCoder& coder, pt::PtContexts& ctx, ProgressiveTetMesh::Impl& s, uint32_t vs) {
   const PtHeader& h = s.header;
-  if (s.mesh.incident[vs].size() > 3 * size_t{kMaxSplitLinkVertices})
+  if (s.mesh.incident.size(vs) > 3 * size_t{kMaxSplitLinkVertices})
     return "the star of vs has more tets than a link of " + std::to_string(kMaxSplitLinkVertices) + " vertices can hold";
   s.star_link.build(s.mesh, vs);
   if (s.star_link.vertices.size() > kMaxSplitLinkVertices)
@@ -150,9 +150,14 @@ Error PtSteps::batch(const ChunkView& chunk) {
                  "batch " + std::to_string(out_->batches_decoded) + ", split " + std::to_string(done) +
                      " (vertex " + std::to_string(v) + "): " + problem};
   };
+  // The flags up to the next 1 are one run of the range decoder (7.7.1:
+  // the context is read as each flag is decoded; the run stops before the
+  // split that changes the counts).
+  const IncidenceLists& incident = s.mesh.incident;
+  auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.size(u) / 2, pt::kFlagContexts - 1); };
   for (; done < split_count; ++v) {
+    v = rc.firstOne(ctx.split_flag, v, vertices, context);
     if (v == vertices) return fail("the flags end before split_count splits");
-    if (!coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], 0)) continue;
     if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
     ++done;
   }

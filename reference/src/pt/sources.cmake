@@ -13,6 +13,7 @@ set(MRSV_PT_ENCODE_SOURCES
   reference/src/pt/pt_encode.cpp)
 set(MRSV_PT_TESTS
   reference/tests/pt_stream_test.cpp
+  reference/tests/incidence_lists_test.cpp
   reference/tests/pt_real_data_test.cpp
   reference/tests/shared_data.cpp)
 

@@ -9,6 +9,7 @@
 
 #include "reconstruct/quadtree_border.h"
 #include "reconstruct/quadtree_error.h"
+#include "reconstruct/quadtree_removal.h"
 #include "reconstruct/quadtree_tree.h"
 
 namespace mrsv {
@@ -232,7 +233,8 @@ void meshRing(const SampleField& field, const quadtree::ErrorTest& test, MeshBui
 }
 
 bool meshWith(const SampleField& field, const QuadtreeDetails* details, QuadtreeCriterion criterion,
-              const ErrorBound& threshold, bool tile_borders, GridMesh* out, uint32_t* rounds) {
+              const ErrorBound& threshold, bool tile_borders, bool remove_vertices, GridMesh* out,
+              QuadtreeReport* report) {
   const uint32_t w = field.size[0], h = field.size[1];
   Tree tree;
   MeshBuilder mesh(field, out);
@@ -246,9 +248,17 @@ bool meshWith(const SampleField& field, const QuadtreeDetails* details, Quadtree
   if (tile_borders) tree.init(1, 1, w - 3, h - 3);
   else tree.init(0, 0, w - 1, h - 1);
   std::vector<std::vector<uint8_t>> choice;
-  *rounds = maxErrorTree(test, &tree, &choice);
+  report->rounds = maxErrorTree(test, &tree, &choice);
   meshTree(tree, &choice, &mesh);
   if (tile_borders) meshRing(field, test, &mesh);
+  report->vertices_removed = 0;
+  report->removal_passes = 0;
+  if (remove_vertices) {
+    quadtree::RemovalReport removal;
+    quadtree::removeVertices(test, out, &removal);
+    report->vertices_removed = removal.removed;
+    report->removal_passes = removal.passes;
+  }
   return true;
 }
 
@@ -271,6 +281,7 @@ bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
     if (details->size[0] != field.size[0] || details->size[1] != field.size[1])
       return fail("the detail signals are of another grid size");
     if (options.tile_borders) return fail("the tile border rule needs the max-error criterion");
+    if (options.remove_vertices) return fail("the vertex-removal pass needs the max-error criterion");
   }
   if (options.tile_borders && (field.size[0] < 4 || field.size[1] < 4))
     return fail("the tile border rule needs a grid of at least 4 x 4 samples");
@@ -280,7 +291,8 @@ bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
   QuadtreeReport* rep = report ? report : &local;
   if (options.max_triangles == 0) {
     rep->threshold = options.threshold;
-    meshWith(field, details, options.criterion, options.threshold, options.tile_borders, out, &rep->rounds);
+    meshWith(field, details, options.criterion, options.threshold, options.tile_borders, options.remove_vertices,
+             out, rep);
     return true;
   }
   // spec 9.6: the smallest k in [0, k_max] with at most max_triangles found by
@@ -302,7 +314,7 @@ bool quadtreeMesh(const SampleField& field, const QuadtreeDetails* details,
   }
   auto build = [&](int64_t k) {
     const ErrorBound t{k, den};
-    meshWith(field, details, options.criterion, t, options.tile_borders, out, &rep->rounds);
+    meshWith(field, details, options.criterion, t, options.tile_borders, options.remove_vertices, out, rep);
     rep->threshold = t;
     return out->cells.size() <= options.max_triangles;
   };

@@ -21,6 +21,7 @@ list(APPEND MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/quadtree_border.cpp
   reference/src/reconstruct/quadtree_error.cpp
   reference/src/reconstruct/quadtree_mesh.cpp
+  reference/src/reconstruct/quadtree_removal.cpp
   reference/src/reconstruct/quadtree_tree.cpp)
 list(APPEND MRSV_RECONSTRUCT_TESTS
   reference/tests/quadtree_test.cpp)

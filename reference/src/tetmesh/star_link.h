@@ -41,7 +41,7 @@ struct StarLink {
   std::vector<uint32_t> vertices;                  // vertex numbers, in the order the star meets them
   std::vector<std::array<uint32_t, 3>> triangles;  // local indices, Link's order
   std::vector<uint32_t> triangle_tet;              // the tet slot of each triangle
-  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle
+  std::vector<uint8_t> on_boundary;                // per local vertex: an edge with one triangle (set only when has_boundary)
   bool has_boundary = false;
 
   // The triangle holding the directed edge a -> b (written (a, b, ...)), or -1.
@@ -55,6 +55,20 @@ struct StarLink {
     const uint32_t e = find(a, b);
     return e == kNone ? kNoTriangle : triangleOf(e);
   }
+  // triangleHolding() with the table's base and stamp held by the caller:
+  // in a loop that stores bytes (the region's flood) the compiler would
+  // reload both from the StarLink at every lookup.
+  struct Lookup {
+    const StarLink* link;
+    const uint32_t* dense;  // nullptr: the hashed table
+    uint32_t stamp;
+    uint32_t triangleHolding(uint32_t a, uint32_t b) const {
+      if (dense == nullptr) return link->triangleHolding(a, b);
+      const uint32_t e = dense[a * kDense + b];
+      return e >> 16 == stamp ? (e >> 8) & 0xFF : kNoTriangle;
+    }
+  };
+  Lookup lookup() const { return Lookup{this, dense_used_ ? dense_.data() : nullptr, edge_stamp_}; }
   // The triangle across the edge from triangle f's j-th vertex to its next
   // one (it holds that edge reversed), or -1 on the link's boundary.
   int64_t across(uint32_t f, int j) const { return triangleFrom(triangles[f][(j + 1) % 3], triangles[f][j]); }
@@ -63,10 +77,26 @@ struct StarLink {
   bool rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
   // rotation(p, its link neighbour of smallest vertex number): c_0's of 7.7.2.
   bool rotationFromLowest(uint32_t p, std::vector<uint32_t>* out) const;
+  // The same two for cut(): the rotation in the first entries of `out`,
+  // which only grows (no fill, no push_back per entry: callgrind had them
+  // at half the cost of the rotations), and its length, 0 when it fails.
+  uint32_t rotationInto(uint32_t p, uint32_t start, std::vector<uint32_t>* out) const;
+  uint32_t rotationFromLowestInto(uint32_t p, std::vector<uint32_t>* out) const;
   // The local vertex of rank r (0 = the smallest vertex number), r < m.
   uint32_t localOfRank(uint32_t r) const;
   // The boundary vertices of the link, by ascending vertex number.
   void boundaryVertices(std::vector<uint32_t>* out) const;
+
+  // From now on there is no triangle holding a -> b (and a rotation through
+  // it fails): the region's flood (star_split.cpp) stops at the cut so.
+  void forgetEdge(uint32_t a, uint32_t b) {
+    if (dense_used_) {
+      dense_[a * kDense + b] = 0;  // the stamp 0 is never a build's
+      return;
+    }
+    const uint32_t e = findHashed(a, b);
+    if (e != kNone) edge_triangle_[e] = kNoTriangle;
+  }
 
   // Builds the link of v in `mesh` (its incidence lists), reusing storage.
   void build(const TetComplex& mesh, uint32_t v);
@@ -111,9 +141,9 @@ struct StarLink {
   bool dense_used_ = false;
   std::vector<uint32_t> dense_;  // per a * kDense + b: denseEntry() when a -> b is an edge of this build
   uint32_t edge_stamp_ = 0;      // 16 bits: dense_ is cleared when it wraps
-  // Scratch of build(): per vertex number, its local index while its stamp
-  // is the current one.
-  std::vector<uint32_t> local_of_, stamp_of_;
+  // Scratch of build(): per vertex number, the stamp of the last build that
+  // met it (high 32 bits) and its local index there.
+  std::vector<uint64_t> tag_of_;
   std::vector<uint32_t> gathered_;  // the link's vertices in the order first met
   uint32_t stamp_ = 0;
 };

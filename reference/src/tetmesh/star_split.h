@@ -26,13 +26,14 @@
 
 namespace mrsv {
 
-// Splits link.center (vs), the link built from `mesh` as it stands, by the
+// Splits link->center (vs), the link built from `mesh` as it stands, by the
 // cut `walk` (local vertices of `link`; `closed` for a cycle); vt is the
 // complex's last vertex, with its position set and an empty tet list.
 // On success `moved` holds the moved tets (splitRegion()'s order) and
 // `walk_global` the cut as vertex numbers. Returns "" or the rule broken
-// (nothing changed).
-std::string applyStarSplit(TetComplex* mesh, const StarLink& link, uint32_t vt, const std::vector<uint32_t>& walk,
+// (nothing changed). The flood forgets the cut's edges in `link`
+// (StarLink::forgetEdge), which is built again for the next split.
+std::string applyStarSplit(TetComplex* mesh, StarLink* link, uint32_t vt, const std::vector<uint32_t>& walk,
                            bool closed, SplitScratch* scratch, std::vector<uint32_t>* moved,
                            std::vector<uint32_t>* walk_global);
 

@@ -48,9 +48,9 @@ bool Link::rotation(uint32_t p, uint32_t start, std::vector<uint32_t>* out) cons
 }
 
 void TetComplex::buildIncidence() {
-  incident.assign(positions.size(), {});
+  incident.assign(static_cast<uint32_t>(positions.size()));
   for (uint32_t t = 0; t < tets.size(); ++t)
-    for (uint32_t v : tets[t]) incident[v].push_back(t);
+    for (uint32_t v : tets[t]) incident.push(v, t);
 }
 
 void TetComplex::buildLink(uint32_t v, Link* link) const {
@@ -61,7 +61,7 @@ void TetComplex::buildLink(uint32_t v, Link* link) const {
   // passes cost more than the work itself (issue 21's profile).
   Link& l = *link;
   l.center = v;
-  const std::vector<uint32_t>& star = incident[v];
+  const IncidenceLists::View star = incident.of(v);
   const uint32_t faces = static_cast<uint32_t>(star.size());
   if (l.stamp_of.size() < positions.size()) {
     l.stamp_of.resize(positions.size(), 0);
@@ -213,7 +213,7 @@ std::string TetComplex::checkManifold() const {
   }
   Link link;
   for (uint32_t v = 0; v < positions.size(); ++v) {
-    if (incident[v].empty()) return "vertex " + std::to_string(v) + " is in no tet";
+    if (incident.empty(v)) return "vertex " + std::to_string(v) + " is in no tet";
     buildLink(v, &link);
     std::string problem = checkLinkIsSphereOrDisk(link);
     if (!problem.empty()) return "vertex " + std::to_string(v) + ": " + problem;

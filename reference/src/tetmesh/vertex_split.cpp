@@ -103,31 +103,30 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
       return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
   }
   const uint32_t first_new = static_cast<uint32_t>(mesh->tets.size());
-  std::vector<uint32_t>& star_vs = mesh->incident[vs];
-  std::vector<uint32_t>& star_vt = mesh->incident[vt];
-  // vt's list is new: sized once for its moved and new tets (one allocation
-  // per split, not a second one when the new tets are appended).
-  star_vt.reserve(moved_count + edges);
-  star_vt.assign(moved, moved + moved_count);
+  IncidenceLists& incident = mesh->incident;
+  // vt's list is new: sized once for its moved and new tets.
+  incident.reserve(vt, moved_count + edges);
+  for (uint32_t i = 0; i < moved_count; ++i) incident.push(vt, moved[i]);
   for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
   // vs keeps the tets that did not move: those that still have vs as a
   // corner (a moved tet has vt in its place now, and no tet repeats a
   // corner). The order of the rest is kept.
   const std::vector<Tet>& tets = mesh->tets;
-  star_vs.erase(std::remove_if(star_vs.begin(), star_vs.end(),
-                               [&](uint32_t t) {
-                                 const Tet& k = tets[t];
-                                 return k[0] != vs && k[1] != vs && k[2] != vs && k[3] != vs;
-                               }),
-                star_vs.end());
+  uint32_t* star_vs = incident.data(vs);
+  uint32_t kept = 0;
+  for (uint32_t f = 0; f < incident.size(vs); ++f) {
+    const Tet& k = tets[star_vs[f]];
+    if (k[0] == vs || k[1] == vs || k[2] == vs || k[3] == vs) star_vs[kept++] = star_vs[f];
+  }
+  incident.resize(vs, kept);
   for (uint32_t i = 0; i < edges; ++i) {
     const uint32_t a = walk[i], b = walk[(i + 1) % walk_length];
     const uint32_t slot = first_new + i;
     mesh->tets.push_back(Tet{vt, a, b, vs});
-    star_vs.push_back(slot);
-    star_vt.push_back(slot);
-    mesh->incident[a].push_back(slot);
-    mesh->incident[b].push_back(slot);
+    incident.push(vs, slot);
+    incident.push(vt, slot);
+    incident.push(a, slot);
+    incident.push(b, slot);
   }
   return "";
 }
@@ -137,18 +136,18 @@ void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk,
   const uint32_t edges = cutEdgeCount(walk_length, closed);
   // The new tets are the last slots, and the last entries of their vertices'
   // lists: every later split has been undone already.
+  IncidenceLists& incident = mesh->incident;
   for (uint32_t i = edges; i-- > 0;) {
-    mesh->incident[walk[(i + 1) % walk_length]].pop_back();
-    mesh->incident[walk[i]].pop_back();
+    incident.pop(walk[(i + 1) % walk_length]);
+    incident.pop(walk[i]);
   }
-  std::vector<uint32_t>& star_vs = mesh->incident[vs];
-  star_vs.resize(star_vs.size() - edges);
+  incident.resize(vs, incident.size(vs) - edges);
   mesh->tets.resize(mesh->tets.size() - edges);
   for (uint32_t i = 0; i < moved_count; ++i) {
     mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vt, vs);
-    star_vs.push_back(moved[i]);
+    incident.push(vs, moved[i]);
   }
-  mesh->incident[vt].clear();
+  incident.clear(vt);
 }
 
 }  // namespace mrsv

@@ -10,7 +10,9 @@
 // (c_i, c_i+1) of the cut gains the tet (vt, c_i, c_i+1, vs).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -19,10 +21,23 @@
 
 namespace mrsv {
 
+// The first n entries of *v set to 0 (v grown as needed). Up to 256 bytes
+// the clear has a fixed size, which the compiler writes inline: a memset
+// call for a link's few entries cost about 4 branch mispredictions per split
+// on the CT crop (cachegrind).
+template <class T>
+T* zeroedPrefix(std::vector<T>* v, size_t n) {
+  constexpr size_t kFixed = 256 / sizeof(T);
+  if (v->size() < std::max(n, kFixed)) v->resize(std::max(n, kFixed));
+  T* p = v->data();
+  std::memset(p, 0, n <= kFixed ? 256 : n * sizeof(T));
+  return p;
+}
+
 struct SplitScratch {
   std::vector<uint32_t> rotation;
-  std::vector<uint32_t> walk_position;  // per local vertex: 1 + index in the walk, 0 if not on it
-  std::vector<uint8_t> triangle_side;   // per link triangle: 0 unknown, 1 vt's, 2 vs's
+  std::vector<uint32_t> walk_position;  // per local vertex: 1 + index in the walk, 0 if not on it (may be longer)
+  std::vector<uint8_t> triangle_side;   // per link triangle: 0 unknown, 1 vt's, 2 vs's (may be longer)
   std::vector<uint32_t> queue;          // splitRegion(): the region's triangles in the order found
   std::vector<Diff3> difference;        // applyStarSplit(): per local vertex, its position - vt's
 };

@@ -4,6 +4,7 @@
 set(MRSV_TILES_DECODE_SOURCES
   reference/src/tiles/tiling.cpp
   reference/src/tiles/tiled_decode.cpp
+  reference/src/tiles/tile_rows_decode.cpp
   reference/src/tiles/region_decode.cpp)
 set(MRSV_TILES_ENCODE_SOURCES
   reference/src/tiles/tiled_encode.cpp

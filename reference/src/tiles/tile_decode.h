@@ -24,6 +24,26 @@ Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k)
 // the samples g of the region with g a multiple of 2^levels on every axis.
 void regionOutputSize(const GridRegion& region, int levels, uint32_t size[3]);
 
+// spec 11.6: a decode reduced by `levels` needs tile sizes that are multiples
+// of 2^levels on every axis with more than one tile; the error, or none.
+Error reducedLatticeError(const TileGrid& tiles, int levels);
+
+// Every tile has at least one band chunk, so that a decode gives samples.
+bool everyTileHasABand(const std::vector<TileJob>& jobs);
+
+// A whole decode refuses an output above the decoder's limit before decoding
+// (at the last tile chunk), whether it gathers the output or hands it over by rows.
+Error outputLimitError(const std::vector<TileJob>& jobs, uint64_t out_bytes, const DecodeOptions& options);
+
+// Decodes one tile of `job` (one thread: options.threads is not read) into `tile`.
+Error decodeTileJob(const TileGrid& tiles, const TileJob& job, bool complete, uint64_t end_offset,
+                    const DecodeOptions& options, DecodedGrid* tile);
+
+// Copies the part of a decoded tile at `origin` inside `region` to the output
+// lattice (regionOutputSize(region, levels) = out_size).
+void placeTile(const DecodedGrid& tile, const uint32_t origin[3], const GridRegion& region, int levels,
+               const uint32_t out_size[3], size_t sample_bytes, uint8_t* out);
+
 // Decodes the jobs (tiles in increasing order) with options.threads threads
 // and copies the samples that fall in `region` into out->samples, laid out as
 // regionOutputSize() says. `complete`: the stream ended with MEND at
@@ -34,6 +54,11 @@ void regionOutputSize(const GridRegion& region, int levels, uint32_t size[3]);
 Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool complete,
                   uint64_t end_offset, const GridRegion& region, const DecodeOptions& options,
                   DecodedGrid* out);
+
+// decodeTiles() over every tile of a complete stream with the samples handed
+// over to options.tile_rows a row of tiles at a time, in order (tile_rows_decode.cpp).
+Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, uint64_t end_offset,
+                     const GridRegion& whole, const DecodeOptions& options, DecodedGrid* out);
 
 // decodeGrid() for coding 2, once the container is framed, GHDR and meta read.
 Error decodeTiledGrid(const DecodeOptions& options, DecodedGrid* out);

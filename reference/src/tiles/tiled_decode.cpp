@@ -23,14 +23,14 @@ bool hasBand(const TileJob& job) {
   return false;
 }
 
+}  // namespace
+
 bool everyTileHasABand(const std::vector<TileJob>& jobs) {
   bool all = !jobs.empty();
   for (const TileJob& job : jobs) all = all && hasBand(job);
   return all;
 }
 
-// A whole decode refuses an output above the decoder's limit before decoding
-// (at the last tile chunk), whether it gathers the output or hands it over by rows.
 Error outputLimitError(const std::vector<TileJob>& jobs, uint64_t out_bytes, const DecodeOptions& options) {
   if (out_bytes <= options.max_output_bytes) return {};
   const ChunkView& last = jobs.back().chunks.back();
@@ -38,7 +38,6 @@ Error outputLimitError(const std::vector<TileJob>& jobs, uint64_t out_bytes, con
                "the output of " + std::to_string(out_bytes) + " bytes exceeds the decoder's limit"};
 }
 
-// Copies the part of a decoded tile inside `region` to the output lattice.
 void placeTile(const DecodedGrid& tile, const uint32_t origin[3], const GridRegion& region, int levels,
                const uint32_t out_size[3], size_t sample_bytes, uint8_t* out) {
   const uint32_t tile_size[3] = {tile.header.size_x, tile.header.size_y, tile.header.size_z};
@@ -78,7 +77,29 @@ void placeTile(const DecodedGrid& tile, const uint32_t origin[3], const GridRegi
   }
 }
 
-}  // namespace
+Error decodeTileJob(const TileGrid& tiles, const TileJob& job, bool complete, uint64_t end_offset,
+                    const DecodeOptions& options, DecodedGrid* tile) {
+  tile->header = tiles.tileHeader(job.tile);
+  // decodeWaveletGrid reads the chunks after the first (the GHDR's place).
+  tile->container.chunks.reserve(job.chunks.size() + 1);
+  tile->container.chunks.push_back(ChunkView{kChunkGridHeader, 0, 0, 0, nullptr});
+  tile->container.chunks.insert(tile->container.chunks.end(), job.chunks.begin(), job.chunks.end());
+  tile->container.complete = complete;
+  tile->container.end_chunk_offset = end_offset;
+  return decodeWaveletGrid(options, tile);
+}
+
+Error reducedLatticeError(const TileGrid& tiles, int levels) {
+  // spec 11.6: a reduced decode takes every 2^K-th sample of the grid, which
+  // each tile can supply only when its origin is on that lattice.
+  for (int a = 0; a < tiles.grid.num_dims && levels > 0; ++a) {
+    if (tiles.count[a] > 1 && (levels >= 31 || tiles.tiling.tile_size[a] % (1u << levels) != 0))
+      return Error{Status::kInvalidArgument, 0, "reduce_levels",
+                   "a tiled grid reduced by " + std::to_string(levels) +
+                       " levels needs tile sizes that are multiples of 2^" + std::to_string(levels)};
+  }
+  return {};
+}
 
 Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k) {
   if (chunk.chunk_type == kChunkMeta || !chunk.chunk_type.critical())
@@ -104,14 +125,7 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
                   uint64_t end_offset, const GridRegion& region, const DecodeOptions& options,
                   DecodedGrid* out) {
   const int levels = options.reduce_levels;
-  // spec 11.6: a reduced decode takes every 2^K-th sample of the grid, which
-  // each tile can supply only when its origin is on that lattice.
-  for (int a = 0; a < tiles.grid.num_dims && levels > 0; ++a) {
-    if (tiles.count[a] > 1 && (levels >= 31 || tiles.tiling.tile_size[a] % (1u << levels) != 0))
-      return Error{Status::kInvalidArgument, 0, "reduce_levels",
-                   "a tiled grid reduced by " + std::to_string(levels) +
-                       " levels needs tile sizes that are multiples of 2^" + std::to_string(levels)};
-  }
+  if (Error e = reducedLatticeError(tiles, levels); !e.ok()) return e;
   const size_t sample_bytes = sampleSize(tiles.grid.sample_type);
   const bool all_have_bands = everyTileHasABand(jobs);
   uint32_t out_size[3];
@@ -134,23 +148,15 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
   std::vector<uint8_t> has_samples(jobs.size());
   std::vector<WaveletHeader> wavelet(jobs.size());
   parallelFor(jobs.size(), options.threads, [&](uint64_t j) {
-    const TileJob& job = jobs[j];
     DecodedGrid tile;
-    tile.header = tiles.tileHeader(job.tile);
-    // decodeWaveletGrid reads the chunks after the first (the GHDR's place).
-    tile.container.chunks.reserve(job.chunks.size() + 1);
-    tile.container.chunks.push_back(ChunkView{kChunkGridHeader, 0, 0, 0, nullptr});
-    tile.container.chunks.insert(tile.container.chunks.end(), job.chunks.begin(), job.chunks.end());
-    tile.container.complete = complete;
-    tile.container.end_chunk_offset = end_offset;
-    errors[j] = decodeWaveletGrid(tile_options, &tile);
+    errors[j] = decodeTileJob(tiles, jobs[j], complete, end_offset, tile_options, &tile);
     bands_decoded[j] = tile.bands_decoded;
     bands_total[j] = tile.bands_total;
     has_samples[j] = tile.has_samples;
     wavelet[j] = tile.wavelet;
     if (errors[j].ok() && all_have_bands && tile.has_samples) {
       uint32_t origin[3], size[3];
-      tiles.box(job.tile, origin, size);
+      tiles.box(jobs[j].tile, origin, size);
       placeTile(tile, origin, region, levels, out_size, sample_bytes, out->samples.data());
     }
   });
@@ -177,63 +183,6 @@ Error decodeTiles(const TileGrid& tiles, const std::vector<TileJob>& jobs, bool 
     return {};
   }
   std::copy(out_size, out_size + 3, out->output_size);
-  return {};
-}
-
-// DecodeOptions::tile_rows: the tiles decoded a row at a time, each row's
-// samples handed over as soon as it is decoded. The same checks and the same
-// error as decodeTiles() over every tile: each row's first error in file
-// order, the smallest offset over the rows (rows after an error are still
-// decoded, for their errors only).
-Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, uint64_t end_offset,
-                     const GridRegion& whole, const DecodeOptions& options, DecodedGrid* out) {
-  // Rows along the slowest axis with more than one tile: a contiguous run of
-  // tile numbers and of output samples.
-  int axis = 0;
-  for (int a = 0; a < 3; ++a)
-    if (tiles.count[a] > 1) axis = a;
-  uint64_t per_row = 1;
-  for (int a = 0; a < axis; ++a) per_row *= tiles.count[a];
-  uint32_t out_size[3];
-  regionOutputSize(whole, options.reduce_levels, out_size);
-  const uint64_t out_bytes = uint64_t{out_size[0]} * out_size[1] * out_size[2] * sampleSize(tiles.grid.sample_type);
-  const bool all_have_bands = everyTileHasABand(jobs);
-  if (all_have_bands)
-    if (Error e = outputLimitError(jobs, out_bytes, options); !e.ok()) return e;
-  DecodeOptions row_options = options;
-  row_options.tile_rows = nullptr;
-  Error first_error;
-  bool has_samples = all_have_bands;
-  out->tiles_with_samples = 0;
-  for (uint32_t row = 0; row < tiles.count[axis]; ++row) {
-    const std::vector<TileJob> row_jobs(jobs.begin() + static_cast<std::ptrdiff_t>(row * per_row),
-                                        jobs.begin() + static_cast<std::ptrdiff_t>((row + 1) * per_row));
-    GridRegion region = whole;
-    region.lo[axis] = row * tiles.tiling.tile_size[axis];
-    region.hi[axis] = std::min<uint64_t>(whole.hi[axis], uint64_t{region.lo[axis]} + tiles.tiling.tile_size[axis]);
-    DecodedGrid part;
-    part.header = out->header;
-    Error e = decodeTiles(tiles, row_jobs, true, end_offset, region, row_options, &part);
-    out->bands_decoded += part.bands_decoded;
-    out->bands_total += part.bands_total;
-    out->tiles_with_samples += part.tiles_with_samples;
-    if (row == 0) out->wavelet = part.wavelet;
-    if (!e.ok()) {
-      if (first_error.ok() || e.offset < first_error.offset) first_error = e;
-      continue;
-    }
-    has_samples = has_samples && part.has_samples;
-    if (!first_error.ok() || !has_samples) continue;
-    // The row's place along the axis in output positions (spec 11.6 lattice).
-    const uint64_t step = uint64_t{1} << options.reduce_levels;
-    const uint32_t first = static_cast<uint32_t>((uint64_t{region.lo[axis]} + step - 1) / step);
-    if (!options.tile_rows(axis, first, part.output_size[axis], part.samples))
-      return Error{Status::kIoError, 0, "output", "the decoded rows could not be written"};
-  }
-  if (!first_error.ok()) return first_error;
-  out->has_samples = has_samples;
-  out->samples.clear();
-  if (has_samples) std::copy(out_size, out_size + 3, out->output_size);
   return {};
 }
 

@@ -67,17 +67,12 @@ std::vector<uint8_t> framedChunk(const ChunkType& type, const uint8_t* payload, 
 
 std::vector<uint8_t> tiledStreamHead(const GridHeader& grid, const Metadata& recorded, const TilingHeader& tiling,
                                      const std::vector<uint8_t>& index) {
-  std::vector<uint8_t> out(kSignature, kSignature + sizeof kSignature);
-  out.insert(out.end(), {kVersionMajor, kVersionMinor, 0});
-  auto add = [&](const ChunkType& type, const std::vector<uint8_t>& payload) {
-    const std::vector<uint8_t> bytes = framedChunk(type, payload.data(), static_cast<uint32_t>(payload.size()));
-    out.insert(out.end(), bytes.begin(), bytes.end());
-  };
-  add(kChunkGridHeader, serializeGridHeader(grid));
-  add(kChunkMeta, serializeMetadata(recorded));
-  add(kChunkTiling, serializeTilingHeader(tiling));
-  add(kChunkTileIndex, index);
-  return out;
+  ContainerWriter out;  // the file header, then each chunk framed
+  out.addChunk(kChunkGridHeader, serializeGridHeader(grid));
+  out.addChunk(kChunkMeta, serializeMetadata(recorded));
+  out.addChunk(kChunkTiling, serializeTilingHeader(tiling));
+  out.addChunk(kChunkTileIndex, index);
+  return out.image();
 }
 
 namespace {

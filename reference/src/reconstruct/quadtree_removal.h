@@ -1,0 +1,24 @@
+// spec 9.7: the vertex-removal pass after the max-error quadtree. Each
+// interior vertex whose star can be re-triangulated with triangles within E
+// leaves the mesh, finest first, pass after pass; the triangles then follow
+// the terrain at any angle instead of the dyadic cells (D83).
+#pragma once
+
+#include <cstdint>
+
+#include "mrsv/grid_mesh.h"
+#include "reconstruct/quadtree_error.h"
+
+namespace mrsv::quadtree {
+
+struct RemovalReport {
+  uint64_t removed = 0;  // vertices that left the mesh
+  uint32_t passes = 0;   // passes made, the last one removing none
+};
+
+// Removes vertices of `mesh` (a 2-D grid mesh covering the whole grid, every
+// triangle counter-clockwise) by the rules of spec 9.7; the grid's border
+// vertices stay. `test` is the max-error test the mesh was made with.
+void removeVertices(const ErrorTest& test, GridMesh* mesh, RemovalReport* report);
+
+}  // namespace mrsv::quadtree
