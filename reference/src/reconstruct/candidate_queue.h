@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
+#include <new>
 #include <vector>
 
 namespace mrsv::reconstruct {
@@ -29,29 +31,36 @@ class CandidateQueue {
   static constexpr uint32_t kAbsent = UINT32_MAX;
 
   void clear() {
-    heap_.clear();
+    heap_.assign(kRoot, Entry{});
     pos_.clear();
     cand_.clear();
   }
-  bool empty() const { return heap_.empty(); }
-  uint32_t top() const { return heap_.front().cell; }
-  const Candidate& candidate(uint32_t cell) const { return cand_[cell]; }
+  bool empty() const { return heap_.size() <= kRoot; }
+  uint32_t top() const { return heap_[kRoot].cell(); }
+  // The sample of the top entry, from the heap array when the entry carries it.
+  uint64_t topSample() const {
+    const Entry& e = heap_[kRoot];
+    return e.tie & kInexact ? cand_[e.cell()].sample : kMaxTie - (e.tie >> 32);
+  }
 
   // Sets (or replaces) the entry of `cell`.
   void set(uint32_t cell, const Candidate& c) {
     grow(cell);
     cand_[cell] = c;
-    const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample < kNoTie;
+    const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample <= kMaxTie;
     // (An exact num converts from 64 bits, without the 128-bit library call.)
     const double num = exact ? double(int64_t(c.num)) : double(c.num);
-    const Entry e{num / double(c.den), cell, exact ? uint32_t(c.sample) : kNoTie};
+    const double key = num / double(c.den);
+    uint64_t bits;
+    std::memcpy(&bits, &key, sizeof bits);
+    const Entry e{bits, exact ? uint64_t(kMaxTie - c.sample) << 32 | cell : kInexact | cell};
     if (pos_[cell] == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);
       return;
     }
     const uint32_t i = pos_[cell];
-    if (i > 0 && before(e, heap_[(i - 1) / kArity])) siftUp(i, e);
+    if (i > kRoot && before(e, at(parent(i)))) siftUp(i, e);
     else siftDown(i, e);
   }
 
@@ -62,15 +71,19 @@ class CandidateQueue {
     pos_[cell] = kAbsent;
     const Entry last = heap_.back();
     heap_.pop_back();
-    if (last.cell == cell) return;
-    if (i > 0 && before(last, heap_[(i - 1) / kArity])) siftUp(i, last);
+    if (last.cell() == cell) return;
+    if (i > kRoot && before(last, at(parent(i)))) siftUp(i, last);
     else siftDown(i, last);
   }
 
  private:
   // Four children per node: half the depth of a binary heap, and a node's
-  // children (16 bytes each) share a cache line or two.
-  static constexpr uint32_t kArity = 4;
+  // children (16 bytes each) fill one cache line: the root is at position 3
+  // of an array of 64-byte groups, the children of position i at 4 i - 8 to
+  // 4 i - 5, its parent at i / 4 + 2.
+  static constexpr uint32_t kRoot = 3;
+  static uint32_t parent(uint32_t i) { return i / 4 + 2; }
+  static uint32_t firstChild(uint32_t i) { return 4 * i - 8; }
 
   // The error as a double beside the cell, so that most comparisons read the
   // heap array alone. When num < 2^30 and den < 2^20 (most errors: small
@@ -78,17 +91,37 @@ class CandidateQueue {
   // in their exact order and equal only when the errors are: two distinct
   // errors differ by at least 1 / (den den'), relatively by 1 / (num den')
   // > 2^-50, while each quotient of exact doubles is rounded by at most
-  // 2^-53. Such an entry carries its sample as `tie`, so that a tie between
-  // two of them is also decided in the heap array; other near-ties read the
-  // exact candidates.
-  static constexpr uint32_t kNoTie = UINT32_MAX;
+  // 2^-53. Such an entry carries its sample too, so that the order of two of
+  // them (larger error, then smaller sample, then larger cell: a sample on an
+  // edge is in two cells with the same error) is that of two 128-bit
+  // integers: (key, tie) with the key's bits (a positive double's bits are
+  // in its order) and tie = (kMaxTie - sample) << 32 | cell. Other entries
+  // have the bit kInexact in tie, and their near-ties read the exact
+  // candidates.
+  static constexpr uint64_t kMaxTie = (uint64_t{1} << 31) - 1;
+  static constexpr uint64_t kInexact = uint64_t{1} << 63;
   static constexpr __int128 kExactNum = __int128{1} << 30;
   static constexpr int64_t kExactDen = int64_t{1} << 20;
   struct Entry {
-    double key;
-    uint32_t cell;
-    uint32_t tie;  // the sample, or kNoTie when not exact
+    uint64_t key;  // the error's double, as bits
+    uint64_t tie;
+    uint32_t cell() const { return uint32_t(tie); }
   };
+  static unsigned __int128 wide(const Entry& e) { return (unsigned __int128){e.key} << 64 | e.tie; }
+  // An allocator of cache-line-aligned blocks, for the heap.
+  template <class T>
+  struct LineAligned {
+    using value_type = T;
+    LineAligned() = default;
+    template <class U>
+    LineAligned(const LineAligned<U>&) {}
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64})); }
+    void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t{64}); }
+    bool operator==(const LineAligned&) const { return true; }
+    bool operator!=(const LineAligned&) const { return false; }
+  };
+  Entry& at(uint32_t i) { return heap_[i]; }
+  const Entry& at(uint32_t i) const { return heap_[i]; }
 
   void grow(uint32_t cell) {
     if (cell < pos_.size()) return;
@@ -96,52 +129,60 @@ class CandidateQueue {
     pos_.resize(n, kAbsent);
     cand_.resize(n);
   }
-  // Whether a comes before b. Doubles carry 53 bits: keys further apart than
-  // 2^-40 relative are in the exact order; closer ones are compared exactly.
+  // Whether a comes before b.
   bool before(const Entry& a, const Entry& b) const {
-    if (a.tie != kNoTie && b.tie != kNoTie) return a.key > b.key || (a.key == b.key && a.tie < b.tie);
-    if (a.key > b.key * (1 + 0x1p-40)) return true;
-    if (b.key > a.key * (1 + 0x1p-40)) return false;
-    return worse(cand_[a.cell], cand_[b.cell]);
+    if (((a.tie | b.tie) & kInexact) == 0)
+      return wide(a) > wide(b);
+    return beforeInexact(a, b);
+  }
+  // Doubles carry 53 bits: keys further apart than 2^-40 relative are in the
+  // exact order; closer ones are compared exactly.
+  [[gnu::noinline]] bool beforeInexact(const Entry& a, const Entry& b) const {
+    double ka, kb;
+    std::memcpy(&ka, &a.key, sizeof ka);
+    std::memcpy(&kb, &b.key, sizeof kb);
+    if (ka > kb * (1 + 0x1p-40)) return true;
+    if (kb > ka * (1 + 0x1p-40)) return false;
+    return worse(cand_[a.cell()], cand_[b.cell()]);
   }
   void place(uint32_t i, const Entry& e) {
-    heap_[i] = e;
-    pos_[e.cell] = i;
+    at(i) = e;
+    pos_[e.cell()] = i;
   }
   void siftUp(uint32_t i, const Entry& e) {
-    while (i > 0) {
-      const uint32_t parent = (i - 1) / kArity;
-      if (!before(e, heap_[parent])) break;
-      place(i, heap_[parent]);
-      i = parent;
+    while (i > kRoot) {
+      const uint32_t up = parent(i);
+      if (!before(e, at(up))) break;
+      place(i, at(up));
+      i = up;
     }
     place(i, e);
   }
   void siftDown(uint32_t i, const Entry& e) {
     const uint32_t n = uint32_t(heap_.size());
     for (;;) {
-      const uint32_t first = kArity * i + 1;
+      const uint32_t first = firstChild(i);
       if (first >= n) break;
       uint32_t child = first;
       if (first + 3 < n) {
         // Four children, as nearly every node has: two pairs, then their
         // winners (the same three comparisons, two of them independent).
-        const uint32_t left = before(heap_[first + 1], heap_[first]) ? first + 1 : first;
-        const uint32_t right = before(heap_[first + 3], heap_[first + 2]) ? first + 3 : first + 2;
-        child = before(heap_[right], heap_[left]) ? right : left;
+        const uint32_t left = before(at(first + 1), at(first)) ? first + 1 : first;
+        const uint32_t right = before(at(first + 3), at(first + 2)) ? first + 3 : first + 2;
+        child = before(at(right), at(left)) ? right : left;
       } else {
         for (uint32_t k = first + 1; k < n; ++k)
-          if (before(heap_[k], heap_[child])) child = k;
+          if (before(at(k), at(child))) child = k;
       }
-      if (!before(heap_[child], e)) break;
-      place(i, heap_[child]);
+      if (!before(at(child), e)) break;
+      place(i, at(child));
       i = child;
     }
     place(i, e);
   }
 
-  std::vector<Entry> heap_;
-  std::vector<uint32_t> pos_;    // per cell: index in heap_, or kAbsent
+  std::vector<Entry, LineAligned<Entry>> heap_ = std::vector<Entry, LineAligned<Entry>>(kRoot);  // from position 3
+  std::vector<uint32_t> pos_;    // per cell: position in the heap, or kAbsent
   std::vector<Candidate> cand_;  // per cell
 };
 

@@ -68,8 +68,7 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
       replaceNeighbour(nb, t, t1);
       stack_.push_back(t), stack_.push_back(t1);
     } else {
-      int k = 0;
-      while (tri_[u].n[k] != t) ++k;
+      const int k = edgeTo(u, t);
       const uint32_t d = tri_[u].v[k];
       const uint32_t mb = tri_[u].n[(k + 2) % 3];  // across d-c (opposite b in u = (d, c, b))
       const uint32_t mc = tri_[u].n[(k + 1) % 3];  // across b-d
@@ -95,8 +94,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     const uint32_t u = tri_[t].n[0];
     if (u == kNone) continue;
     const uint32_t p = tri_[t].v[0], a1 = tri_[t].v[1], a2 = tri_[t].v[2];
-    int k = 0;
-    while (tri_[u].n[k] != t) ++k;
+    const int k = edgeTo(u, t);
     const uint32_t q = tri_[u].v[k];
     if (!conflict(p, a1, a2, q)) continue;
     // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).

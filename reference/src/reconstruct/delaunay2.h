@@ -65,10 +65,15 @@ class Delaunay2 {
     tri_[t].v = {a, b, c};
     tri_[t].n = {na, nb, nc};
   }
+  // The edge of t across which lies its neighbour u, computed rather than
+  // searched (which edge it is cannot be predicted).
+  int edgeTo(uint32_t t, uint32_t u) const {
+    const auto& n = tri_[t].n;
+    return int(n[1] == u) + 2 * int(n[2] == u);
+  }
   void replaceNeighbour(uint32_t t, uint32_t from, uint32_t to) {
     if (t == kNone) return;
-    auto& n = tri_[t].n;
-    n[n[0] == from ? 0 : n[1] == from ? 1 : 2] = to;
+    tri_[t].n[edgeTo(t, from)] = to;
   }
   // Flips edges opposite the new vertex until all are locally Delaunay.
   void legalize(std::vector<uint32_t>* touched);

@@ -75,6 +75,16 @@ struct TerrainInserter::State {
     if (((n - 1) & (step - 1)) != 0 && lo <= n - 1 && n - 1 <= hi) f(n - 1);
   }
 
+  // A sample on an edge shared by two triangles has the same error in both
+  // (spec 8.5), so one of them counts it: the one that sees the edge with
+  // ex > 0, or ex = 0 and ey > 0, for its barycentric numerator ex x + ey y
+  // + e0 (the other sees -ex, -ey); an edge on the rectangle's border, with
+  // no neighbour, is counted. Every sample is still in some triangle's scan,
+  // the worst of all is the same, and each is queued once.
+  static bool countsEdge(int64_t ex, int64_t ey, uint32_t neighbour) {
+    return neighbour == Delaunay2::kNone || ex > 0 || (ex == 0 && ey > 0);
+  }
+
   // spec 8.5: a triangle's worst lattice sample, exactly.
   void scan(uint32_t t) {
     if (step == 1) {
@@ -129,22 +139,65 @@ struct TerrainInserter::State {
   // kUnit: the lattice step is 1 (the single stage and every last stage).
   template <class W, bool kUnit>
   void scanWith(uint32_t t) {
-    // The corners from the triangulation (its insertion has just read them)
-    // and their values from the field (beside the samples about to be read).
+    // The corners from the triangulation (its insertion has just read them).
     const auto& tv = dt.triangle(t);
     const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
+    const int64_t den = orient2d(a, b, c);
     const int32_t* values = field->values.data();
     const int64_t nx64 = nx;
-    const int64_t za = values[a.y * nx64 + a.x];
-    const int64_t zb = values[b.y * nx64 + b.x] - za, zc = values[c.y * nx64 + c.x] - za;
-    const int64_t den = orient2d(a, b, c);
-    // Pick's theorem: a triangle of grid points with twice its area 1 holds
-    // no grid point but its corners (on a lattice of step 1, every sample).
-    if (kUnit && den == 1) {
+    if (kUnit && den <= 3) {
+      // Pick's theorem, den = 2 I + B - 2 with I grid points inside and B on
+      // the border, and an edge holds gcd(dx, dy) - 1 points besides its
+      // ends, a gcd that divides den: den = 1, no point but the corners;
+      // den = 2, the midpoint of the one edge whose coordinate differences
+      // are even; den = 3, the centroid when it is a grid point (I = 1),
+      // else the two points at the thirds of the one edge whose differences
+      // are multiples of 3 (B = 5). (On a lattice of step 1, every sample.)
+      W best_num = 0;
+      int64_t best = 0;
+      // (x, y) with the error numerator e; points in increasing index.
+      const auto take = [&](int64_t x, int64_t y, int64_t e) {
+        if (skip_border && (x == 0 || y == 0 || x == nx64 - 1 || y == int64_t{ny} - 1)) return;
+        const W size = W(e < 0 ? -e : e);
+        if (size > best_num) best_num = size, best = y * nx64 + x;
+      };
+      const auto value = [&](int64_t x, int64_t y) { return int64_t{values[y * nx64 + x]}; };
+      // Whether t counts the points of its edge from u to w (edge i).
+      const auto counts = [&](const Point2& u, const Point2& w, int i) {
+        return countsEdge(int64_t{u.y} - w.y, int64_t{w.x} - u.x, dt.neighbours(t)[i]);
+      };
+      if (den == 2) {
+        const Point2& u = ((b.x ^ c.x) | (b.y ^ c.y)) & 1 ? ((c.x ^ a.x) | (c.y ^ a.y)) & 1 ? a : c : b;
+        const Point2& w = &u == &a ? b : &u == &b ? c : a;
+        const int64_t mx = (int64_t{u.x} + w.x) >> 1, my = (int64_t{u.y} + w.y) >> 1;
+        if (counts(u, w, &u == &b ? 0 : &u == &c ? 1 : 2))
+          take(mx, my, 2 * value(mx, my) - value(u.x, u.y) - value(w.x, w.y));
+      } else if (den == 3) {
+        const int64_t sx = int64_t{a.x} + b.x + c.x, sy = int64_t{a.y} + b.y + c.y;
+        if (sx % 3 == 0 && sy % 3 == 0) {
+          take(sx / 3, sy / 3, 3 * value(sx / 3, sy / 3) - value(a.x, a.y) - value(b.x, b.y) - value(c.x, c.y));
+        } else {
+          const auto thirds = [](const Point2& p, const Point2& q) { return (q.x - p.x) % 3 == 0 && (q.y - p.y) % 3 == 0; };
+          const Point2& u = thirds(b, c) ? b : thirds(c, a) ? c : a;
+          const Point2& w = &u == &a ? b : &u == &b ? c : a;
+          if (counts(u, w, &u == &b ? 0 : &u == &c ? 1 : 2)) {
+            const int64_t dx = (w.x - u.x) / 3, dy = (w.y - u.y) / 3;
+            const int64_t zu = value(u.x, u.y), zw = value(w.x, w.y);
+            const int64_t x1 = u.x + dx, y1 = u.y + dy, x2 = u.x + 2 * dx, y2 = u.y + 2 * dy;
+            const int64_t e1 = 3 * value(x1, y1) - 2 * zu - zw, e2 = 3 * value(x2, y2) - zu - 2 * zw;
+            if (y1 * nx64 + x1 < y2 * nx64 + x2) take(x1, y1, e1), take(x2, y2, e2);
+            else take(x2, y2, e2), take(x1, y1, e1);
+          }
+        }
+      }
+      if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best));
       worst_error[t] = 0.0;
       queue.remove(t);
       return;
     }
+    // Their values from the field (beside the samples about to be read).
+    const int64_t za = values[a.y * nx64 + a.x];
+    const int64_t zb = values[b.y * nx64 + b.x] - za, zc = values[c.y * nx64 + c.x] - za;
     const int64_t st = kUnit ? 1 : step;
     // Barycentric numerators as functions of the sample (x, y): w = ex * x + ey * y + e0.
     struct Edge {
@@ -156,6 +209,14 @@ struct TerrainInserter::State {
     };
     const Edge edges[3] = {edge(b, c), edge(c, a), edge(a, b)};
     const Edge &eb = edges[1], &ec = edges[2];
+    // The rows' limits: the edges that t does not count (countsEdge) taken
+    // as w - 1 >= 0, that is w > 0.
+    Edge limits[3] = {edges[0], edges[1], edges[2]};
+    bool left_out[3];
+    for (int i = 0; i < 3; ++i) {
+      left_out[i] = !countsEdge(edges[i].ex, edges[i].ey, dt.neighbours(t)[i]);
+      limits[i].e0 -= left_out[i];
+    }
     int64_t x0 = std::min(std::min(a.x, b.x), c.x), x1 = std::max(std::max(a.x, b.x), c.x);
     int64_t y0 = std::min(std::min(a.y, b.y), c.y), y1 = std::max(std::max(a.y, b.y), c.y);
     if (skip_border) {
@@ -173,10 +234,11 @@ struct TerrainInserter::State {
     // the two others lie below it, nor does the bottom corner's when they
     // lie above: a corner is a vertex, never a candidate, so those rows are
     // left out (most of a small triangle's rows are one or two samples long).
-    if (kUnit) {
-      if (first_y == ys[top] && ys[mid] > ys[top]) ++first_y;
-      if (last_row == ys[bottom] && ys[mid] < ys[bottom]) --last_row;
-    }
+    // So is a horizontal edge's row when t does not count that edge.
+    if (first_y == ys[top] && (kUnit ? ys[mid] > ys[top] || left_out[bottom] : ys[mid] == ys[top] && left_out[bottom]))
+      first_y += st;
+    if (last_row == ys[bottom] && (kUnit ? ys[mid] < ys[bottom] || left_out[top] : ys[mid] == ys[bottom] && left_out[top]))
+      --last_row;
 
     // First the rows' runs: the rows from the top vertex to the middle one
     // (by y) lie between the two edges from the top, the rest between the
@@ -194,16 +256,16 @@ struct TerrainInserter::State {
       y += count * st;
     };
     if (y <= last_row) {
-      along.start(edges[mid], y, st);
+      along.start(limits[mid], y, st);
       // Rows above the middle vertex's, or every row when the short edge
       // from the middle is horizontal.
       const int64_t split = ys[mid] == ys[bottom] ? last_row : std::min(last_row, ys[mid] - 1);
       if (y <= split) {
-        beside.start(edges[bottom], y, st);
+        beside.start(limits[bottom], y, st);
         limitRows(split);
       }
       if (y <= last_row) {
-        beside.start(edges[top], y, st);
+        beside.start(limits[top], y, st);
         limitRows(last_row);
       }
     }
@@ -264,9 +326,9 @@ struct TerrainInserter::State {
     }
     // The last row, when not a multiple of step, by division.
     const int64_t last_y = int64_t{ny} - 1;
-    if (!kUnit && (last_y & (st - 1)) != 0 && y0 <= last_y && last_y <= y1) {
+    if (!kUnit && (last_y & (st - 1)) != 0 && y0 <= last_y && last_y <= last_row) {
       int64_t lo = x0, hi = x1;
-      for (const Edge& e : edges) {
+      for (const Edge& e : limits) {
         if (e.ex == 0) continue;
         const int64_t n = e.ey * last_y + e.e0;
         if (e.ex > 0) lo = std::max(lo, -floorDiv(n, e.ex));
@@ -274,33 +336,38 @@ struct TerrainInserter::State {
       }
       if (lo <= hi) visitRow(values + last_y * nx64, lo, hi, qAt(x0, last_y));
     }
-    if (best_num > 0) {
+    if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best - values));
+    worst_error[t] = 0.0;
+    queue.remove(t);
+  }
+
+  // Triangle t's worst sample, with the error num / den > 0: queued when
+  // beyond the bound.
+  template <class W>
+  void record(uint32_t t, W num, int64_t den, uint64_t sample) {
+    worst_error[t] = double(num) / double(den);
+    // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
+    // numerator fits 64 bits, as it does but for huge bounds and shifts.)
+    const bool beyond = bound_num < 0 ||
+                        (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
+                             ? __int128{int64_t(num)} * bound_den > __int128{int64_t(bound_num)} * den
+                             : __int128{num} * bound_den > bound_num * den);
+    if (beyond) {
       Candidate found;
-      found.num = best_num;
+      found.num = num;
       found.den = den;
-      found.sample = uint64_t(best - values);
-      worst_error[t] = double(best_num) / double(den);
-      // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
-      // numerator fits 64 bits, as it does but for huge bounds and shifts.)
-      const bool beyond = bound_num < 0 ||
-                          (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
-                               ? __int128{int64_t(best_num)} * bound_den > __int128{int64_t(bound_num)} * den
-                               : found.num * bound_den > bound_num * found.den);
-      if (beyond) {
-        queue.set(t, found);
-        return;
-      }
-    } else {
-      worst_error[t] = 0.0;
+      found.sample = sample;
+      queue.set(t, found);
+      return;
     }
     queue.remove(t);
   }
 
   // Every vertex's rank (spec 8.3) is its insertion number, corners 0 to 3:
   // ties of cocircular vertices go to the older ones (decision D47).
-  void insertSample(uint64_t sample, uint32_t hint) {
+  // t is the triangle whose worst sample it is, which holds it.
+  void insertSample(uint64_t sample, uint32_t t) {
     const Point2 p{int32_t(sample % nx), int32_t(sample / nx)};
-    const uint32_t t = dt.locate(p, hint);
     const uint32_t v = dt.insert(p, dt.vertexCount(), t);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
@@ -399,13 +466,10 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
 
   uint64_t since_progress = 0;
   while (!s.queue.empty()) {
-    const uint32_t worst_triangle = s.queue.top();
-    const Candidate worst = s.queue.candidate(worst_triangle);
-    if (limits.max_error.set() &&
-        worst.num * bound_den <= bound_num * worst.den)
-      break;
+    // (Only candidates beyond the bound are queued: the queue runs empty
+    // when the worst is within it.)
     if (limits.max_cells != 0 && s.dt.triangleCount() >= limits.max_cells) break;
-    s.insertSample(worst.sample, worst_triangle);
+    s.insertSample(s.queue.topSample(), s.queue.top());
     if (progress && ++since_progress == 4096) {
       since_progress = 0;
       if (!progress(s.dt.triangleCount())) break;
