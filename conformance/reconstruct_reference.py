@@ -560,7 +560,7 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, b
         if log:
             log(f"stage s={s} end={end}: {len(mesh.rank)} vertices, {len(mesh.tris)} triangles")
     if remove:  # 8.8: 9.7's pass, as quadtree_reference.py writes it from chapter 9
-        import quadtree_reference as qr
+        import quadtree_reference as qr  # here: that module imports this one
         field = qr.Field(X, Y, mesh.values)
         tris = [(mesh.xy(a), mesh.xy(b), mesh.xy(c)) for a, b, c in mesh.tris]
         return qr.canonical(field, qr.remove_vertices(field, bound, tris))

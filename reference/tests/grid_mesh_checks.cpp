@@ -83,4 +83,12 @@ bool withinBoundEverywhere(const SampleField& f, const GridMesh& m, const ErrorB
   return ok;
 }
 
+std::vector<std::array<uint32_t, 3>> borderPoints(const GridMesh& mesh) {
+  std::vector<std::array<uint32_t, 3>> out;
+  for (const auto& p : mesh.points)
+    if (p[0] == 0 || p[1] == 0 || p[0] + 1 == mesh.size[0] || p[1] + 1 == mesh.size[1]) out.push_back(p);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace mrsv::test

@@ -3,7 +3,9 @@
 // every sample by brute force (not the reconstructors' own code).
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "mrsv/grid_mesh.h"
 
@@ -23,5 +25,8 @@ std::string triangulationProblem(const GridMesh& mesh);
 // error as a double.
 bool withinBoundEverywhere(const SampleField& field, const GridMesh& mesh, const ErrorBound& bound,
                            double* worst);
+
+// The mesh's points on its grid's border, sorted: what tiles must share.
+std::vector<std::array<uint32_t, 3>> borderPoints(const GridMesh& mesh);
 
 }  // namespace mrsv::test

@@ -176,15 +176,6 @@ TEST(Quadtree, MaxErrorHonouredOnRealTerrains) {
   }
 }
 
-// The grid points of a mesh on the grid's border, sorted.
-std::vector<std::array<uint32_t, 3>> borderPoints(const GridMesh& m) {
-  std::vector<std::array<uint32_t, 3>> out;
-  for (const auto& p : m.points)
-    if (p[0] == 0 || p[1] == 0 || p[0] + 1 == m.size[0] || p[1] + 1 == m.size[1]) out.push_back(p);
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // spec 9.7: after the removal pass the mesh is still crack-free and within E
 // everywhere, its border is the tree's (so tiles still meet), and it has at
 // most 1.5 x the triangles of Delaunay insertion (issue 22; measured 0.5 to
@@ -202,7 +193,7 @@ TEST(Quadtree, RemovalPassKeepsTheBoundAndTheBorder) {
         const GridMesh m = meshAt(f, e, tiles, true);
         expectCrackFree(m);
         EXPECT_EQ(worstOver(f, m, ErrorBound{e, 1}), 0);
-        EXPECT_EQ(borderPoints(m), borderPoints(tree));
+        EXPECT_EQ(test::borderPoints(m), test::borderPoints(tree));
         EXPECT_LT(m.cells.size(), tree.cells.size());
         InsertionLimits limits;
         limits.max_error = ErrorBound{e, 1};

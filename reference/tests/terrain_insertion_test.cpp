@@ -158,12 +158,6 @@ TEST(TerrainInsertion, ErrorBoundHoldsOnEverySampleOfRealTerrains) {
 TEST(TerrainInsertion, RemovalPassKeepsTheBoundAndTheBorder) {
   const SampleField helens = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 317, 460);
   const SampleField fuji = test::terrainCrop("srtm3_N35E138_mt_fuji_1201x1201_int16le.raw.zst", 441, 304, 460, 378);
-  const auto border = [](const GridMesh& m) {
-    std::set<std::array<uint32_t, 3>> out;
-    for (const auto& p : m.points)
-      if (p[0] == 0 || p[1] == 0 || p[0] + 1 == m.size[0] || p[1] + 1 == m.size[1]) out.insert(p);
-    return out;
-  };
   for (const SampleField* f : {&helens, &fuji})
     for (const char* e : {"1", "5", "20", "50"})
       for (bool rule : {true, false}) {
@@ -178,7 +172,7 @@ TEST(TerrainInsertion, RemovalPassKeepsTheBoundAndTheBorder) {
         EXPECT_EQ(test::triangulationProblem(m), "");
         double worst = 0;
         EXPECT_TRUE(test::withinBoundEverywhere(*f, m, b, &worst)) << worst;
-        EXPECT_EQ(border(m), border(inserted));
+        EXPECT_EQ(test::borderPoints(m), test::borderPoints(inserted));
         EXPECT_EQ(m.points.size() + removed, inserted.points.size());
         EXPECT_LT(m.cells.size(), inserted.cells.size() * 4 / 5);
       }

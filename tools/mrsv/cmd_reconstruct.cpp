@@ -43,8 +43,8 @@ const char kMeshHelp[] =
     "  --remove-vertices     2-D: after the mesh, remove every inner vertex whose star\n"
     "                        can be re-triangulated within E (spec 9.7; 8.8 after\n"
     "                        insertion, which then needs --max-error and no\n"
-    "                        --progressive): 0.5 to 0.75 x insertion's triangles, for\n"
-    "                        2 to 8 x the time\n"
+    "                        --progressive): 0.5 to 0.85 x insertion's triangles, for\n"
+    "                        2 to 10 x the time\n"
     "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
     "                        mesh (default; fewer tets at the same error, D62) or the\n"
     "                        paper's, to the trilinear interpolant of its cell\n"
@@ -196,6 +196,8 @@ int runMesh(int argc, char** argv) {
     return fail(cmd, out + ": a 3-D grid gives a tet mesh: write .vtu, .vtk, .mesh or .node", kExitUsage);
 
   // spec 8.7: the stages, less the K finest levels.
+  // A region: one stage on the bytes already decoded (its `bytes` equal to
+  // bytes.size(), so that no prefix is decoded again).
   std::vector<ReconstructionStage> stages =
       by_region ? std::vector<ReconstructionStage>{{bytes.size(), 0}}
                 : reconstructionStages(grid, bytes.size(), unsigned(levels));

@@ -31,7 +31,9 @@ struct Tables {
 
 constexpr Tables kTables;
 
-uint32_t crc32cTables(uint32_t crc, const uint8_t* data, size_t size) {
+}  // namespace
+
+uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size) {
   const auto& t = kTables.t;
   crc = ~crc;
   while (size >= 8) {
@@ -49,6 +51,8 @@ uint32_t crc32cTables(uint32_t crc, const uint8_t* data, size_t size) {
 }
 
 #ifdef MRSV_CRC32C_SSE42
+namespace {
+
 // SSE4.2's crc32 instruction computes this very polynomial, eight bytes a step:
 // about 8x the tables' speed, which a decode pays before its first tile (the
 // 63.5 MB mosaic: 40 ms of one thread).
@@ -65,18 +69,16 @@ __attribute__((target("sse4.2"))) uint32_t crc32cSse42(uint32_t crc, const uint8
   while (size--) c32 = _mm_crc32_u8(c32, *data++);
   return ~c32;
 }
-#endif
 
 }  // namespace
+#endif
 
 uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size) {
 #ifdef MRSV_CRC32C_SSE42
   static const bool hardware = __builtin_cpu_supports("sse4.2");
   if (hardware) return crc32cSse42(crc, data, size);
 #endif
-  return crc32cTables(crc, data, size);
+  return crc32cPortable(crc, data, size);
 }
-
-uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size) { return crc32cTables(crc, data, size); }
 
 }  // namespace mrsv

@@ -10,7 +10,7 @@ namespace mrsv {
 // The processor's crc32 instruction where it has one (SSE4.2), else tables.
 uint32_t crc32c(uint32_t crc, const uint8_t* data, size_t size);
 
-// The table computation alone (tests compare the two).
+// The table computation, for processors without the instruction (and tests).
 uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size);
 
 }  // namespace mrsv

@@ -74,7 +74,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
   bool out_of_memory = false;
   std::exception_ptr failure;
 
-  const uint64_t rows = tiles.count[axis];
+  const uint64_t rows = tiles.count[axis];  // every axis above has one tile: rows x per_row = all tiles
   // A slot takes row r once row r - kRowsInFlight is handed over; its samples
   // are sized outside the lock (the first rows' before the threads start).
   auto sizeSlot = [&](RowSlot& slot, uint64_t r) {
@@ -101,8 +101,7 @@ Error decodeTileRows(const TileGrid& tiles, const std::vector<TileJob>& jobs, ui
     handing = true;
     for (;;) {
       RowSlot& slot = slots[handed % kRowsInFlight];
-      const uint64_t in_row = std::min<uint64_t>(per_row, jobs.size() - handed * per_row);
-      if (stop || handed == rows || slot.tiles_done < in_row) break;
+      if (stop || handed == rows || slot.tiles_done < per_row) break;
       const uint64_t reuse = handed + kRowsInFlight;  // the row the slot takes next
       const bool hand = has_samples && !any_error;
       held.unlock();
