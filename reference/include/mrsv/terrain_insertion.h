@@ -55,7 +55,8 @@ class TerrainInserter {
               std::string* error, const InsertionProgress& progress = nullptr);
 
   // The largest error of a lattice sample of the last stage (informative;
-  // decisions compare exactly).
+  // decisions compare exactly), found by scanning every triangle again: the
+  // field given to the last refine() must still exist.
   double maxError() const;
   uint64_t vertexCount() const;
   uint64_t cellCount() const;

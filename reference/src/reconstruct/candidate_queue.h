@@ -7,7 +7,9 @@
 
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <new>
+#include <unordered_map>
 #include <vector>
 
 namespace mrsv::reconstruct {
@@ -30,24 +32,31 @@ class CandidateQueue {
  public:
   static constexpr uint32_t kAbsent = UINT32_MAX;
 
+  // `recompute` gives the candidate of a queued cell again (the owner scans
+  // it): an exact entry keeps no copy, and the rare near-tie of an exact
+  // entry with an inexact one is settled with it.
+  explicit CandidateQueue(std::function<Candidate(uint32_t cell)> recompute) : recompute_(std::move(recompute)) {}
+
   void clear() {
     heap_.assign(kRoot, Entry{});
     pos_.clear();
-    cand_.clear();
+    inexact_.clear();
   }
   bool empty() const { return heap_.size() <= kRoot; }
   uint32_t top() const { return heap_[kRoot].cell(); }
   // The sample of the top entry, from the heap array when the entry carries it.
   uint64_t topSample() const {
     const Entry& e = heap_[kRoot];
-    return e.tie & kInexact ? cand_[e.cell()].sample : kMaxTie - (e.tie >> 32);
+    return e.tie & kInexact ? inexact_.at(e.cell()).sample : kMaxTie - (e.tie >> 32);
   }
 
   // Sets (or replaces) the entry of `cell`.
   void set(uint32_t cell, const Candidate& c) {
     grow(cell);
-    cand_[cell] = c;
     const bool exact = c.num < kExactNum && c.den < kExactDen && c.sample <= kMaxTie;
+    // (An exact entry carries all it needs; an inexact one's candidate is
+    // kept aside, and a cell's stale one is overwritten or never read.)
+    if (!exact) inexact_[cell] = c;
     // (An exact num converts from 64 bits, without the 128-bit library call.)
     const double num = exact ? double(int64_t(c.num)) : double(c.num);
     const double key = num / double(c.den);
@@ -127,7 +136,6 @@ class CandidateQueue {
     if (cell < pos_.size()) return;
     const size_t n = size_t(cell) + 1 + (size_t(cell) >> 1);
     pos_.resize(n, kAbsent);
-    cand_.resize(n);
   }
   // Whether a comes before b.
   bool before(const Entry& a, const Entry& b) const {
@@ -143,7 +151,10 @@ class CandidateQueue {
     std::memcpy(&kb, &b.key, sizeof kb);
     if (ka > kb * (1 + 0x1p-40)) return true;
     if (kb > ka * (1 + 0x1p-40)) return false;
-    return worse(cand_[a.cell()], cand_[b.cell()]);
+    return worse(candidate(a), candidate(b));
+  }
+  Candidate candidate(const Entry& e) const {
+    return e.tie & kInexact ? inexact_.at(e.cell()) : recompute_(e.cell());
   }
   void place(uint32_t i, const Entry& e) {
     at(i) = e;
@@ -182,8 +193,12 @@ class CandidateQueue {
   }
 
   std::vector<Entry, LineAligned<Entry>> heap_ = std::vector<Entry, LineAligned<Entry>>(kRoot);  // from position 3
-  std::vector<uint32_t> pos_;    // per cell: position in the heap, or kAbsent
-  std::vector<Candidate> cand_;  // per cell
+  std::vector<uint32_t> pos_;  // per cell: position in the heap, or kAbsent
+  // The candidates of inexact entries (few: the largest cells' errors), by
+  // cell. A per-cell array of them was a random write of its own at every
+  // set, and most of the memory the insertion touched.
+  std::unordered_map<uint32_t, Candidate> inexact_;
+  std::function<Candidate(uint32_t cell)> recompute_;
 };
 
 }  // namespace mrsv::reconstruct

@@ -38,8 +38,7 @@ struct TerrainInserter::State {
   std::vector<uint8_t> is_vertex;       // per sample
   std::vector<uint64_t> vertex_sample;  // per vertex
   std::vector<int32_t> vertex_value;    // per vertex: the last stage's value
-  CandidateQueue queue;                 // triangles whose worst sample is beyond the bound
-  std::vector<double> worst_error;      // per triangle, for maxError() only
+  CandidateQueue queue{[this](uint32_t t) { return candidate(t); }};  // triangles whose worst sample is beyond the bound
   // This stage's bound: candidates within it are never inserted, so they are
   // not queued (num < 0: no bound).
   __int128 bound_num = -1;
@@ -54,7 +53,6 @@ struct TerrainInserter::State {
   const SampleField* field = nullptr;
   int64_t step = 1;  // 2^shift
   bool skip_border = false;
-  double last_error = 0;
 
   State(uint32_t x, uint32_t y)
       : nx(x), ny(y), dt(int32_t(x - 1), int32_t(y - 1)), is_vertex(uint64_t{x} * y), runs(size_t{y} + 1) {
@@ -85,16 +83,40 @@ struct TerrainInserter::State {
     return neighbour == Delaunay2::kNone || ex > 0 || (ex == 0 && ey > 0);
   }
 
-  // spec 8.5: a triangle's worst lattice sample, exactly.
+  // A triangle's worst lattice sample: the error num / den (num = 0: none
+  // but its corners, or all exact) and the sample's index.
+  template <class W>
+  struct Worst {
+    W num;
+    int64_t den;
+    uint64_t sample;
+  };
+
+  // spec 8.5: a triangle's worst lattice sample, exactly, queued when
+  // beyond the bound.
   void scan(uint32_t t) {
     if (step == 1) {
-      if (narrow) scanWith<int64_t, true>(t);
-      else scanWith<__int128, true>(t);
+      if (narrow) record(t, scanWith<int64_t, true>(t));
+      else record(t, scanWith<__int128, true>(t));
     } else if (narrow) {
-      scanWith<int64_t, false>(t);
+      record(t, scanWith<int64_t, false>(t));
     } else {
-      scanWith<__int128, false>(t);
+      record(t, scanWith<__int128, false>(t));
     }
+  }
+
+  // The same, as a candidate, for the queue and maxError().
+  Candidate candidate(uint32_t t) {
+    Worst<__int128> w;
+    if (step == 1) w = narrow ? widen(scanWith<int64_t, true>(t)) : scanWith<__int128, true>(t);
+    else w = narrow ? widen(scanWith<int64_t, false>(t)) : scanWith<__int128, false>(t);
+    Candidate c;
+    c.num = w.num, c.den = w.den, c.sample = w.sample;
+    return c;
+  }
+  template <class W>
+  static Worst<__int128> widen(const Worst<W>& w) {
+    return {__int128{w.num}, w.den, w.sample};
   }
 
   // One edge's limit on a row's x range. The edge's barycentric numerator
@@ -138,7 +160,7 @@ struct TerrainInserter::State {
   // the stage's value range allows (checked in refine()), else __int128.
   // kUnit: the lattice step is 1 (the single stage and every last stage).
   template <class W, bool kUnit>
-  void scanWith(uint32_t t) {
+  Worst<W> scanWith(uint32_t t) {
     // The corners from the triangulation (its insertion has just read them).
     const auto& tv = dt.triangle(t);
     const Point2 a = dt.point(tv[0]), b = dt.point(tv[1]), c = dt.point(tv[2]);
@@ -190,10 +212,7 @@ struct TerrainInserter::State {
           }
         }
       }
-      if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best));
-      worst_error[t] = 0.0;
-      queue.remove(t);
-      return;
+      return {best_num, den, uint64_t(best)};
     }
     // Their values from the field (beside the samples about to be read).
     const int64_t za = values[a.y * nx64 + a.x];
@@ -336,27 +355,26 @@ struct TerrainInserter::State {
       }
       if (lo <= hi) visitRow(values + last_y * nx64, lo, hi, qAt(x0, last_y));
     }
-    if (best_num > 0) return record<W>(t, best_num, den, uint64_t(best - values));
-    worst_error[t] = 0.0;
-    queue.remove(t);
+    return {best_num, den, best ? uint64_t(best - values) : 0};
   }
 
-  // Triangle t's worst sample, with the error num / den > 0: queued when
-  // beyond the bound.
+  // Triangle t's worst sample queued when beyond the bound (and its error is
+  // not 0), else t taken out of the queue.
   template <class W>
-  void record(uint32_t t, W num, int64_t den, uint64_t sample) {
-    worst_error[t] = double(num) / double(den);
+  void record(uint32_t t, const Worst<W>& worst) {
+    const W num = worst.num;
+    const int64_t den = worst.den;
     // (Beyond the bound: in 64 x 64 -> 128-bit products when the bound's
     // numerator fits 64 bits, as it does but for huge bounds and shifts.)
-    const bool beyond = bound_num < 0 ||
+    const bool beyond = num > 0 && (bound_num < 0 ||
                         (bound_num <= INT64_MAX && std::is_same_v<W, int64_t>
                              ? __int128{int64_t(num)} * bound_den > __int128{int64_t(bound_num)} * den
-                             : __int128{num} * bound_den > bound_num * den);
+                             : __int128{num} * bound_den > bound_num * den));
     if (beyond) {
       Candidate found;
       found.num = num;
       found.den = den;
-      found.sample = sample;
+      found.sample = worst.sample;
       queue.set(t, found);
       return;
     }
@@ -372,8 +390,6 @@ struct TerrainInserter::State {
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
     vertex_value.push_back(field->values[sample]);
-    // Grown by half at a time (the slots past the last triangle stay 0).
-    if (worst_error.size() < dt.triangleCount()) worst_error.resize(dt.triangleCount() * 3 / 2, 0.0);
     // The triangles made or changed are those around the new vertex (its
     // star), each once: walk around it from t, which holds it.
     uint32_t s = t;
@@ -452,7 +468,6 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   const int64_t bound_den = limits.max_error.den;
   const bool border = limits.border_rule && limits.max_error.set();
   if (border) s.borderRule(bound_num, bound_den);
-  s.worst_error.assign(s.dt.triangleCount(), 0.0);
   s.bound_num = limits.max_error.set() ? bound_num : -1;
   s.bound_den = bound_den;
   s.queue.clear();
@@ -475,12 +490,21 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
       if (!progress(s.dt.triangleCount())) break;
     }
   }
-  s.last_error = 0;
-  for (double e : s.worst_error) s.last_error = std::max(s.last_error, e);
   return true;
 }
 
-double TerrainInserter::maxError() const { return state_->last_error; }
+// Every triangle scanned again: informative, and not worth a per-triangle
+// array that the insertion would write at every scan.
+double TerrainInserter::maxError() const {
+  State& s = *state_;
+  if (!s.field) return 0;
+  double worst = 0;
+  for (uint32_t t = 0; t < s.dt.triangleCount(); ++t) {
+    const Candidate c = s.candidate(t);
+    worst = std::max(worst, double(c.num) / double(c.den));
+  }
+  return worst;
+}
 
 uint64_t TerrainInserter::vertexCount() const { return state_->dt.vertexCount(); }
 uint64_t TerrainInserter::cellCount() const { return state_->dt.triangleCount(); }
