@@ -11,6 +11,7 @@ Delaunay2::Delaunay2(int32_t max_x, int32_t max_y, const uint64_t* corner_ranks)
   points_ = {{0, 0}, {max_x, 0}, {max_x, max_y}, {0, max_y}};
   ranks_ = {0, 1, 2, 3};
   if (corner_ranks) ranks_.assign(corner_ranks, corner_ranks + 4);
+  for (uint32_t v = 0; v < 4; ++v) ranks_are_numbers_ = ranks_are_numbers_ && ranks_[v] == v;
   // The diagonal the perturbed test picks: (0,0)-(max,max) unless (0,max)
   // conflicts with the triangle below it.
   tri_.resize(2);
@@ -39,8 +40,10 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
   const uint32_t pv = static_cast<uint32_t>(points_.size());
   points_.push_back(p);
   ranks_.push_back(rank);
+  ranks_are_numbers_ = ranks_are_numbers_ && rank == pv;
   const auto v = tri_[t].v;
   const auto n = tri_[t].n;
+  prefetch(n[0]), prefetch(n[1]), prefetch(n[2]);
   int on_edge = -1;
   for (int i = 0; i < 3; ++i)
     if (orient2d(points_[v[(i + 1) % 3]], points_[v[(i + 2) % 3]], p) == 0) on_edge = i;
@@ -100,6 +103,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     // Flip a1-a2 to p-q: t = (p, a1, q), u = (p, q, a2).
     const uint32_t t1 = tri_[t].n[1], t2 = tri_[t].n[2];                   // across a2-p, p-a1
     const uint32_t u1 = tri_[u].n[kNext[k]], u2 = tri_[u].n[kNext[kNext[k]]];  // across a1-q, q-a2
+    prefetch(u2);  // u's edge 0 after the flip, the next tested
     set(t, p, a1, q, u1, u, t2);
     set(u, p, q, a2, u2, t1, t);
     replaceNeighbour(u1, u, t);

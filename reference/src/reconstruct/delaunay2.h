@@ -82,12 +82,22 @@ class Delaunay2 {
     // The ranks are read only for cocircular points, where the perturbation decides.
     const int s = incircle(points_[a], points_[b], points_[c], points_[d]);
     if (s != 0) return s > 0;
-    const uint64_t rank[4] = {ranks_[a], ranks_[b], ranks_[c], ranks_[d]};
+    const uint64_t rank[4] = {rankOf(a), rankOf(b), rankOf(c), rankOf(d)};
     return cocircularConflict(points_[a], points_[b], points_[c], points_[d], rank);
+  }
+
+  // A vertex's rank without reading ranks_ (a random read of its own) while
+  // every rank is the vertex's number, as the greedy insertion gives them.
+  uint64_t rankOf(uint32_t v) const { return ranks_are_numbers_ ? v : ranks_[v]; }
+  // Starts loading triangle t (kNone: nothing) that a flip will soon read:
+  // the flips' reads are random, and issued together they overlap.
+  void prefetch(uint32_t t) const {
+    if (t != kNone) __builtin_prefetch(&tri_[t]);
   }
 
   std::vector<Point2> points_;
   std::vector<uint64_t> ranks_;
+  bool ranks_are_numbers_ = true;
   // A triangle's corners and neighbours side by side: a split or flip reads both.
   struct Triangle {
     std::array<uint32_t, 3> v;
