@@ -56,8 +56,8 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
     set(t, pv, a, b, n[2], t1, t2);
     set(t1, pv, b, c, n[0], t2, t);
     set(t2, pv, c, a, n[1], t, t1);
-    replaceNeighbour(n[0], t, t1);
-    replaceNeighbour(n[1], t, t2);
+    replaceNeighbourToTest(n[0], t, t1);
+    replaceNeighbourToTest(n[1], t, t2);
     stack_.push_back(t), stack_.push_back(t1), stack_.push_back(t2);
   } else {
     // On the edge b-c opposite a.
@@ -80,8 +80,8 @@ uint32_t Delaunay2::insert(Point2 p, uint64_t rank, uint32_t t, std::vector<uint
       set(t1, pv, c, a, nb, t, u);
       set(u, pv, d, c, mb, t1, u1);
       set(u1, pv, b, d, mc, u, t);
-      replaceNeighbour(nb, t, t1);
-      replaceNeighbour(mc, u, u1);
+      replaceNeighbourToTest(nb, t, t1);
+      replaceNeighbourToTest(mc, u, u1);
       stack_.push_back(t), stack_.push_back(t1), stack_.push_back(u), stack_.push_back(u1);
     }
   }
@@ -106,7 +106,7 @@ void Delaunay2::legalize(std::vector<uint32_t>* touched) {
     prefetch(u2);  // u's edge 0 after the flip, the next tested
     set(t, p, a1, q, u1, u, t2);
     set(u, p, q, a2, u2, t1, t);
-    replaceNeighbour(u1, u, t);
+    replaceNeighbourToTest(u1, u, t);
     replaceNeighbour(t1, t, u);
     stack_.push_back(t);
     stack_.push_back(u);

@@ -75,6 +75,14 @@ class Delaunay2 {
     if (t == kNone) return;
     tri_[t].n[edgeTo(t, from)] = to;
   }
+  // The same for an edge that a flip will test: the corner of t facing it,
+  // which the in-circle test reads, starts loading.
+  void replaceNeighbourToTest(uint32_t t, uint32_t from, uint32_t to) {
+    if (t == kNone) return;
+    const int k = edgeTo(t, from);
+    tri_[t].n[k] = to;
+    __builtin_prefetch(&points_[tri_[t].v[k]]);
+  }
   // Flips edges opposite the new vertex until all are locally Delaunay.
   void legalize(std::vector<uint32_t>* touched);
 
