@@ -6,6 +6,7 @@ set(MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/grid_stages.cpp
   reference/src/reconstruct/delaunay2.cpp
   reference/src/reconstruct/line_insertion.cpp
+  reference/src/reconstruct/run_scan.cpp
   reference/src/reconstruct/terrain_insertion.cpp
   reference/src/reconstruct/delaunay3.cpp
   reference/src/reconstruct/volume_insertion.cpp)

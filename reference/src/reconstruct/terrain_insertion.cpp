@@ -7,6 +7,7 @@
 #include "reconstruct/candidate_queue.h"
 #include "reconstruct/delaunay2.h"
 #include "reconstruct/line_insertion.h"
+#include "reconstruct/run_scan.h"
 
 namespace mrsv {
 
@@ -46,12 +47,13 @@ struct TerrainInserter::State {
   bool narrow = false;                  // errors fit 64-bit arithmetic this stage
   // The stage's samples as 16-bit integers when they all fit (terrains in
   // metres do), else empty: the scans read half the cache lines, and at the
-  // larger bounds they read about a thousand samples per insertion.
+  // larger bounds they read about a thousand samples per insertion. Padded
+  // with kPadding samples for run_scan (AVX2).
   std::vector<int16_t> short_values;
+  static constexpr size_t kPadding = 4;
+  const reconstruct::RunScanFunction run_scan = reconstruct::runScanAvx2();
   // A scan's runs of samples, one per lattice row of the triangle.
-  struct Run {
-    int64_t lo, hi;
-  };
+  using Run = reconstruct::SampleRun;
   std::vector<Run> runs;
   // The current stage.
   const SampleField* field = nullptr;
@@ -348,6 +350,15 @@ struct TerrainInserter::State {
       }
       if (last_apart && lo <= last && last <= hi) consider(v + last, qr + qx * U(last - x0));
     };
+    if constexpr (kUnit && std::is_same_v<S, int16_t>) {
+      if (run_scan && den < (int64_t{1} << 31)) {
+        if (run == runs.data()) return {0, den, 0};
+        const reconstruct::RunScan rs{values + first_y * nx64, nx64, runs.data(), runs_end - runs.data(), x0, den,
+                                      uint64_t(qAt(x0, first_y)), uint64_t(dq_row), uint64_t(qx)};
+        const reconstruct::RunWorst w = run_scan(rs);
+        return {w.size, den, w.at ? uint64_t(w.at - values) : 0};
+      }
+    }
     if (run != runs.data()) {
       U q_row = qAt(x0, first_y);
       const S* v = values + first_y * nx64;
@@ -488,10 +499,12 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   const auto [lo, hi] = std::minmax_element(field.values.begin(), field.values.end());
   const __int128 range = field.values.empty() ? 0 : __int128{*hi} - *lo;
   s.narrow = range * 4 * s.nx * s.ny < (__int128{1} << 62);
-  // (A field smaller than a core's cache, 1 MiB, gains nothing for the copy.)
   s.short_values.clear();
-  if (field.values.size() > (size_t{1} << 18) && *lo >= INT16_MIN && *hi <= INT16_MAX)
+  if (!field.values.empty() && *lo >= INT16_MIN && *hi <= INT16_MAX) {
+    s.short_values.reserve(field.values.size() + State::kPadding);
     s.short_values.assign(field.values.begin(), field.values.end());
+    s.short_values.resize(field.values.size() + State::kPadding, 0);
+  }
   s.skip_border = border;
   for (uint32_t t = 0; t < s.dt.triangleCount(); ++t) s.scan(t);
 
