@@ -38,7 +38,10 @@ struct TerrainInserter::State {
   Delaunay2 dt;
   std::vector<uint8_t> is_vertex;       // per sample
   std::vector<uint64_t> vertex_sample;  // per vertex
-  std::vector<int32_t> vertex_value;    // per vertex: the last stage's value
+  // Per vertex: the last stage's value, set at the end of refine() (read
+  // at every insertion, the sample would be a cache miss of its own: the
+  // scans read short_values).
+  std::vector<int32_t> vertex_value;
   CandidateQueue queue{[this](uint32_t t) { return candidate(t); }};  // triangles whose worst sample is beyond the bound
   // This stage's bound: candidates within it are never inserted, so they are
   // not queued (num < 0: no bound).
@@ -412,7 +415,6 @@ struct TerrainInserter::State {
     const uint32_t v = dt.insert(p, dt.vertexCount(), t);
     is_vertex[sample] = 1;
     vertex_sample.push_back(sample);
-    vertex_value.push_back(field->values[sample]);
     // The triangles made or changed are those around the new vertex (its
     // star), each once: walk around it from t, which holds it.
     uint32_t s = t;
@@ -453,8 +455,7 @@ struct TerrainInserter::State {
         dt.insert(p, dt.vertexCount(), hint);  // hint holds p after it
         is_vertex[sample] = 1;
         vertex_sample.push_back(sample);
-        vertex_value.push_back(field->values[sample]);
-      }
+          }
     }
   }
 };
@@ -480,7 +481,6 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
   }
   s.field = &field;
   s.step = int64_t{1} << shift;
-  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex_value[v] = field.values[s.vertex_sample[v]];
   // spec 8.7: a stage on a lattice of step 2^shift > 1 stops at 2^(shift+1)
   // times the bound (decision D46: coarse stages, which see blurred samples,
   // then place few vertices the finer stages would not have chosen).
@@ -519,6 +519,8 @@ bool TerrainInserter::refine(const SampleField& field, unsigned shift, const Ins
       if (!progress(s.dt.triangleCount())) break;
     }
   }
+  s.vertex_value.resize(s.vertex_sample.size());
+  for (size_t v = 0; v < s.vertex_sample.size(); ++v) s.vertex_value[v] = field.values[s.vertex_sample[v]];
   return true;
 }
 
