@@ -104,6 +104,7 @@ struct TerrainInserter::State {
   // spec 8.5: a triangle's worst lattice sample, exactly, queued when
   // beyond the bound.
   void scan(uint32_t t) {
+    queue.prefetch(t);
     const bool shorts = !short_values.empty();
     if (step == 1) {
       if (shorts) record(t, scanWith<int64_t, true, int16_t>(t));
