@@ -242,6 +242,42 @@ TEST(TerrainInsertion, StagesOnlyAddVertices) {
   }
 }
 
+// maxError() scans the triangles again: without the border rule (whose side
+// samples the scans leave out) it is the largest error of every sample,
+// whether the bound or a triangle count stopped the insertion.
+TEST(TerrainInsertion, MaxErrorIsTheLargestSampleError) {
+  const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 257, 257);
+  for (const char* e : {"5", static_cast<const char*>(nullptr)}) {
+    TerrainInserter ins(f.size[0], f.size[1]);
+    InsertionLimits limits;
+    if (e) parseErrorBound(e, &limits.max_error);
+    else limits.max_cells = 3000;
+    limits.border_rule = false;
+    std::string problem;
+    ASSERT_TRUE(ins.refine(f, 0, limits, &problem)) << problem;
+    GridMesh m;
+    ins.mesh(&m);
+    double worst = 0;
+    test::withinBoundEverywhere(f, m, ErrorBound{1000000, 1}, &worst);
+    EXPECT_GT(worst, 1.0);
+    EXPECT_NEAR(ins.maxError(), worst, 1e-9 * worst) << (e ? e : "3000 triangles");
+  }
+}
+
+// Samples that fit 16 bits are scanned from a 16-bit copy (with AVX2 where
+// the CPU has it), others from the field: the same terrain times 1000, with
+// the bound times 1000, has every error times 1000 and so the same mesh.
+TEST(TerrainInsertion, WideSamplesGiveTheSameMesh) {
+  const SampleField f = test::terrainCrop("srtm3_N35E138_mt_fuji_1201x1201_int16le.raw.zst", 441, 304, 460, 378);
+  SampleField wide = f;
+  for (int32_t& v : wide.values) v *= 1000;
+  for (const auto& [e, wide_e] : {std::pair{"1", "1000"}, {"20", "20000"}}) {
+    GridMesh narrow_mesh = insertionMesh(f, e), wide_mesh = insertionMesh(wide, wide_e);
+    EXPECT_EQ(narrow_mesh.points, wide_mesh.points) << e;
+    EXPECT_EQ(narrow_mesh.cells, wide_mesh.cells) << e;
+  }
+}
+
 TEST(TerrainInsertion, CanonicalOutputIsRepeatable) {
   const SampleField f = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 30, 40, 129, 200);
   EXPECT_EQ(canonicalGridMeshOutput(insertionMesh(f, "3.5")), canonicalGridMeshOutput(insertionMesh(f, "3.5")));
