@@ -20,6 +20,8 @@
 #include <new>
 #include <vector>
 
+#include "common/large_array.h"
+
 namespace mrsv {
 
 class IncidenceLists {
@@ -110,7 +112,7 @@ class IncidenceLists {
   }
   // Every block again in vertex order, without holes.
   void pack() {
-    std::vector<uint32_t> packed;
+    LargeVector<uint32_t> packed;
     packed.reserve(pool_.size() - holes_);
     for (List& l : list_) {
       const uint64_t to = packed.size();
@@ -122,8 +124,8 @@ class IncidenceLists {
     holes_ = 0;
   }
 
-  std::vector<uint32_t> pool_;
-  std::vector<List> list_;
+  LargeVector<uint32_t> pool_;
+  LargeVector<List> list_;
   uint64_t holes_ = 0;  // pool entries in no vertex's block
 };
 
