@@ -99,7 +99,8 @@ def test_region_reads_only_its_tiles(tiled_terrain, st_helens):
 
 
 def test_region_at_reduced_resolution(tiled_terrain):
-    whole, _ = mrsv.decode(tiled_terrain, levels=1)
+    whole, info = mrsv.decode(tiled_terrain, levels=1)
+    assert whole.shape == (64, 64) and info["spacing"] == (60, 60) and info["origin"] == (1000, 2000)
     samples, info = mrsv.decode(tiled_terrain, region=((9, 8), (73, 41)), levels=1)
     # The lattice of every second sample inside the box: x 10..72, y 8..40.
     assert np.array_equal(samples, whole[4:21, 5:37])
