@@ -155,7 +155,8 @@ Error PtSteps::batch(const ChunkView& chunk) {
   // the context is read as each flag is decoded; the run stops before the
   // split that changes the counts).
   const IncidenceLists& incident = s.mesh.incident;
-  auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.size(u) / 2, pt::kFlagContexts - 1); };
+  static_assert(2 * (pt::kFlagContexts - 1) < 255, "the contexts are told apart below 255 tets");
+  auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.sizeUpTo255(u) / 2, pt::kFlagContexts - 1); };
   for (; done < split_count; ++v) {
     v = rc.firstOne(ctx.split_flag, v, vertices, context);
     if (v == vertices) return fail("the flags end before split_count splits");
