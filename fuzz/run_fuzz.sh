@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of a fuzz build for SECONDS each, seeded from the
-# conformance vectors (container and coded) and the committed corpus. New
-# inputs go to a scratch corpus; crashes are written to fuzz/findings/ and fail
-# the run.
+# conformance vectors (container, coded, tiled, PT and reconstruction) and the
+# committed corpus. New inputs go to a scratch corpus; crashes are written to
+# fuzz/findings/ and fail the run.
 # Usage: fuzz/run_fuzz.sh BUILD_DIR SECONDS [TARGET...]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -25,6 +25,9 @@ for t in "${targets[@]}"; do
       "$scratch/$t" "$here/../conformance/vectors/valid" "$here/../conformance/vectors/invalid" \
       "$here/../conformance/vectors/coded_valid" "$here/../conformance/vectors/coded_invalid" \
       "$here/../conformance/vectors/tiled_valid" "$here/../conformance/vectors/tiled_invalid" \
+      "$here/../conformance/vectors/pt_valid" "$here/../conformance/vectors/pt_invalid" \
+      "$here/../conformance/vectors/quadtree" "$here/../conformance/vectors/reconstruct" \
+      "$here/../conformance/vectors/reconstruct3" \
       "$here/corpus" "$here/corpus_mesh" "$here/corpus_pt" "$here/corpus_tet" "$here/corpus_grid" "$here/corpus_stream" >"$scratch/$t.log" 2>&1; then
     echo "fuzz: $t FOUND A PROBLEM; input saved under fuzz/findings/"
     tail -40 "$scratch/$t.log"

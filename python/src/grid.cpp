@@ -14,12 +14,12 @@
 #include <pybind11/stl.h>
 
 #include "common.h"
+#include "region.h"
 #include "mrsv/encode.h"
 #include "mrsv/file_io.h"
 #include "mrsv/grid.h"
 #include "mrsv/grid_formats.h"
-#include "mrsv/progressive_mesh.h"
-#include "mrsv/progressive_tet_mesh.h"
+#include "mrsv/limits.h"
 
 namespace mrsv::python {
 namespace {
@@ -202,6 +202,33 @@ GridHeader headerOf(const py::object& array_like, py::array* samples) {
   return h;
 }
 
+// tile= (an int for every axis, or one per axis in x, y, z order) as
+// 'mrsv encode --tile' reads it; empty for None.
+std::vector<uint32_t> tileSizes(const py::object& tile) {
+  if (tile.is_none()) return {};
+  const char* form = "tile= must be an int or a sequence of 1 to 3 ints (x, y, z order)";
+  std::vector<py::object> items;
+  if (py::isinstance<py::sequence>(tile) && !py::isinstance<py::str>(tile) && !py::isinstance<py::bytes>(tile)) {
+    for (const py::handle& v : py::reinterpret_borrow<py::sequence>(tile))
+      items.push_back(py::reinterpret_borrow<py::object>(v));
+  } else {
+    items.push_back(tile);
+  }
+  if (items.empty()) throw py::value_error(form);
+  if (items.size() > 3) throw py::value_error("tile= takes at most 3 sizes");
+  std::vector<uint32_t> sizes;
+  for (const py::object& v : items) {
+    if (py::isinstance<py::bool_>(v) || py::isinstance<py::float_>(v) || !py::hasattr(v, "__index__"))
+      throw py::type_error(form);
+    const long long n = v.attr("__index__")().cast<long long>();
+    if (n < 1 || n > static_cast<long long>(kMaxGridAxis))
+      throw py::value_error("tile= size " + std::to_string(n) + " is not a whole number from 1 to " +
+                            std::to_string(kMaxGridAxis));
+    sizes.push_back(static_cast<uint32_t>(n));
+  }
+  return sizes;
+}
+
 py::dict encode(const py::object& array, const py::object& path, const py::object& nodata,
                 const std::string& coding, const std::optional<std::string>& wavelet_name,
                 const std::optional<int>& order, const std::string& entropy, int levels, bool lossless,
@@ -209,7 +236,8 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
                 const std::optional<double>& psnr, const std::optional<double>& step,
                 const std::optional<double>& keep, bool progressive, const std::string& bound_route,
                 const std::string& prediction, const py::object& roi, double roi_falloff, double roi_gain,
-                const py::object& spacing, const py::object& origin, const py::object& metadata_entries) {
+                const py::object& spacing, const py::object& origin, const py::object& metadata_entries,
+                const py::object& tile, const py::object& threads) {
   py::array samples;
   GridHeader header = headerOf(array, &samples);
   std::string out = outputPath(path);
@@ -268,6 +296,20 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
   } else {
     throw py::value_error("wavelet= must be 'cdf97' or 'bspline'");
   }
+  // Tiles as 'mrsv encode --tile' takes them (spec 11).
+  const std::vector<uint32_t> tiles = tileSizes(tile);
+  TiledEncodeOptions tiled;
+  tiled.threads = threadCount(threads);
+  if (!tiles.empty()) {
+    if (coding == "stored") throw py::value_error("tile= needs coding='wavelet'");
+    if (tiles.size() != 1 && tiles.size() != header.num_dims)
+      throw py::value_error("tile= gives " + std::to_string(tiles.size()) + " sizes for a grid of " +
+                            std::to_string(header.num_dims) + " dimensions (give 1 or " +
+                            std::to_string(header.num_dims) + ")");
+    if (w.has_roi) throw py::value_error("tile= does not take roi= (no region of interest with tiles in this version)");
+    for (int a = 0; a < 3; ++a)
+      tiled.tile_size[a] = a >= header.num_dims ? 1 : tiles[std::min<size_t>(a, tiles.size() - 1)];
+  }
   Metadata metadata;
   if (!spacing.is_none()) metadata.set("spacing", numberList(spacing, "spacing", header.num_dims));
   if (!origin.is_none()) metadata.set("origin", numberList(origin, "origin", header.num_dims));
@@ -283,7 +325,8 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
   {
     py::gil_scoped_release release;
     e = coding == "stored" ? encodeStoredGrid(header, bytes, metadata, &stream)
-                           : encodeWaveletGrid(header, bytes, metadata, w, &stream, &report);
+        : tiles.empty()    ? encodeWaveletGrid(header, bytes, metadata, w, &stream, &report)
+                           : encodeTiledGrid(header, bytes, metadata, w, tiled, &stream, &report);
     if (e.ok()) written = writeFileAtomically(out, stream, &io_error);
   }
   if (!e.ok()) throw py::value_error(e.field + ": " + e.message);
@@ -297,9 +340,14 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
   if (coding == "wavelet") {
     r["psnr"] = report.psnr;
     r["max_abs_error"] = report.max_abs_error;
-    r["levels"] = report.levels;
-    r["kept_coefficients"] = report.kept_coefficients;
-    r["l2_error"] = report.l2_error;
+    r["levels"] = report.levels;  // tiled: the most levels of any tile
+    if (tiles.empty()) {
+      r["kept_coefficients"] = report.kept_coefficients;
+      r["l2_error"] = report.l2_error;
+    } else {
+      std::vector<uint32_t> size(tiled.tile_size, tiled.tile_size + header.num_dims);
+      r["tile_size"] = py::tuple(py::cast(size));  // x, y, z order
+    }
   } else {
     r["psnr"] = std::numeric_limits<double>::infinity();
     r["max_abs_error"] = 0.0;
@@ -308,65 +356,124 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
   return r;
 }
 
-py::tuple decode(const py::object& source_object, int levels, const py::object& byte_limit) {
-  if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
-  Source source = loadSource(source_object);
-  DecodeOptions options;
-  options.reduce_levels = levels;
-  options.container.allow_partial_tail = applyByteLimit(byte_limit, &source);
-  if (isProgressiveMeshStream(source.data, source.size))
-    throw py::value_error("this is a progressive mesh stream (spec 6): open it with mrsv.ProgressiveMesh");
-  if (isProgressiveTetStream(source.data, source.size))
-    throw py::value_error("this is a progressive tet mesh stream (spec 7): open it with mrsv.ProgressiveTetMesh");
-  DecodedGrid grid;
-  Error e;
-  {
-    py::gil_scoped_release release;
-    e = decodeGrid(source.data, source.size, options, &grid);
-  }
-  if (!e.ok()) raiseStreamError(e);
-  if (!grid.has_samples)
-    throw py::value_error("the stream ends before its sample data (a prefix of " +
-                          std::to_string(grid.container.chunks.size()) + " chunks)");
+// The samples of a decode as a numpy array of shape (z, y, x).
+py::array samplesArray(const DecodedGrid& grid) {
   const GridHeader& h = grid.header;
   std::vector<py::ssize_t> shape;
   for (int axis = h.num_dims - 1; axis >= 0; --axis) shape.push_back(grid.output_size[axis]);
   py::array samples(py::dtype(dtypeOf(h.sample_type)), shape);
   std::memcpy(samples.mutable_data(), grid.samples.data(), grid.samples.size());
+  return samples;
+}
 
+// What a whole decode and a region decode both report; spacing and origin are
+// the caller's (they describe the array returned).
+py::dict gridInfo(const DecodedGrid& grid, int levels) {
+  const GridHeader& h = grid.header;
   py::dict info;
   std::vector<py::ssize_t> full;
   const uint32_t sizes[3] = {h.size_x, h.size_y, h.size_z};
   for (int axis = h.num_dims - 1; axis >= 0; --axis) full.push_back(sizes[axis]);
   info["shape"] = py::tuple(py::cast(full));
   info["sample_type"] = sampleTypeName(h.sample_type);
-  info["coding"] = h.coding == GridCoding::kStored ? "stored" : "wavelet";
+  info["coding"] = h.coding == GridCoding::kStored ? "stored" : h.coding == GridCoding::kTiled ? "tiled" : "wavelet";
   info["nodata"] = nodataValue(h);
-  if (h.coding == GridCoding::kWavelet) {
+  if (h.coding != GridCoding::kStored) {
+    // A tiled grid: the first tile decoded says which wavelet (each tile is a
+    // wavelet grid of its own, spec 11.4); the bands are summed over the tiles
+    // decoded (a region's only).
     info["wavelet"] = grid.wavelet.order == kWaveletOrderCdf97 ? "cdf97" : "bspline";
     info["order"] = grid.wavelet.order == kWaveletOrderCdf97 ? py::object(py::none()) : py::int_(grid.wavelet.order);
-    std::vector<int> per_axis(grid.wavelet.levels, grid.wavelet.levels + h.num_dims);
-    info["decomposition_levels"] = py::tuple(py::cast(per_axis));  // x, y, z order
     info["bands_decoded"] = grid.bands_decoded;
     info["bands_total"] = grid.bands_total;
+  }
+  if (h.coding == GridCoding::kWavelet) {
+    std::vector<int> per_axis(grid.wavelet.levels, grid.wavelet.levels + h.num_dims);
+    info["decomposition_levels"] = py::tuple(py::cast(per_axis));  // x, y, z order
     info["residual_decoded"] = grid.residual_decoded;
   }
+  if (h.coding == GridCoding::kTiled) {
+    std::vector<uint32_t> tile(grid.tile_size, grid.tile_size + h.num_dims);
+    info["tile_size"] = py::tuple(py::cast(tile));  // x, y, z order
+    info["tiles_total"] = grid.tiles_total;
+  }
   info["levels"] = levels;
+  info["metadata"] = metadataDict(grid.metadata);
+  for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
+    info[key] = parsedNumbers(grid.metadata, key, false);
+  return info;
+}
+
+// A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6),
+// as a region of any grid does.
+const uint8_t kEveryAxis[3] = {16, 16, 16};
+
+py::tuple decodeBox(const py::object& source_object, int levels, const py::object& byte_limit,
+                    const py::object& region_object, int threads) {
+  const RegionArgument region = parseGridRegion(region_object);
+  DecodeOptions options;
+  options.reduce_levels = levels;
+  options.threads = threads;
+  RegionDecode r = decodeRegion(source_object, byte_limit, region, options);
+  const DecodedGrid& grid = r.grid;
+  if (!grid.has_samples) throw py::value_error("the stream ends before the region's sample data");
+  py::dict info = gridInfo(grid, levels);
+  info["region"] = regionTuple(region);
+  info["complete"] = py::none();  // a region decode reads only part of the stream
+  info["bytes"] = r.bytes_total;
+  info["bytes_read"] = r.bytes_read;
+  info["bytes_used"] = py::none();
+  // The metadata 'mrsv decode --region' writes: the origin moved to the first
+  // output sample, on the lattice of every 2^K-th sample inside the box (spec 11.6).
+  uint32_t first[3];
+  const uint32_t step = 1u << levels;
+  for (int a = 0; a < 3; ++a) first[a] = (region.box.lo[a] + step - 1) / step * step;
+  const Metadata output_metadata =
+      reducedResolutionMetadata(regionMetadata(grid.metadata, first), grid.header, kEveryAxis, levels);
+  info["spacing"] = parsedNumbers(output_metadata, "spacing", true);
+  info["origin"] = parsedNumbers(output_metadata, "origin", true);
+  return py::make_tuple(samplesArray(grid), info);
+}
+
+py::tuple decode(const py::object& source_object, int levels, const py::object& byte_limit,
+                 const py::object& region, const py::object& threads_object) {
+  if (levels < 0 || levels > 16) throw py::value_error("levels= must be a whole number from 0 to 16");
+  const int threads = threadCount(threads_object);
+  if (!region.is_none()) return decodeBox(source_object, levels, byte_limit, region, threads);
+  Source source = loadSource(source_object);
+  DecodeOptions options;
+  options.reduce_levels = levels;
+  options.threads = threads;
+  options.container.allow_partial_tail = applyByteLimit(byte_limit, &source);
+  refuseMeshStreams(source.data, source.size);
+  DecodedGrid grid;
+  Error e;
+  {
+    py::gil_scoped_release release;
+    e = decodeGrid(source.data, source.size, options, &grid);
+  }
+  // A tiled grid whose tiles are not on the 2^K lattice (spec 11.6).
+  if (e.status == Status::kInvalidArgument && e.field == "reduce_levels") throw py::value_error("levels=: " + e.message);
+  if (!e.ok()) raiseStreamError(e);
+  if (!grid.has_samples)
+    throw py::value_error("the stream ends before its sample data (a prefix of " +
+                          std::to_string(grid.container.chunks.size()) + " chunks)");
+  const GridHeader& h = grid.header;
+  py::dict info = gridInfo(grid, levels);
   info["complete"] = grid.container.complete;
   info["bytes"] = source.size;
+  info["bytes_read"] = source.size;
   info["bytes_used"] = grid.container.complete ? grid.container.end_chunk_offset + kChunkHeaderSize + kChunkCrcSize
                        : grid.container.chunks.empty() ? kFileHeaderSize
                                                        : grid.container.chunks.back().endOffset();
-  info["metadata"] = metadataDict(grid.metadata);
   // spacing and origin describe the array returned: at reduced resolution an
   // output step spans 2^K samples, as in `mrsv decode --levels K`'s GeoTIFF
   // (metadata keeps the stream's own entries).
-  const Metadata output_metadata = reducedResolutionMetadata(grid.metadata, h, grid.wavelet.levels, levels);
+  const Metadata output_metadata = reducedResolutionMetadata(
+      grid.metadata, h, h.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels, levels);
   info["spacing"] = parsedNumbers(output_metadata, "spacing", true);
   info["origin"] = parsedNumbers(output_metadata, "origin", true);
-  for (const char* key : {"error_bound", "error_max_abs", "error_psnr_db", "error_rmse"})
-    info[key] = parsedNumbers(grid.metadata, key, false);
-  return py::make_tuple(samples, info);
+  return py::make_tuple(samplesArray(grid), info);
 }
 
 }  // namespace
@@ -379,7 +486,8 @@ void registerGrid(py::module_& m) {
         py::arg("step") = py::none(), py::arg("keep") = py::none(), py::arg("progressive") = false,
         py::arg("bound_route") = "auto", py::arg("prediction") = "auto", py::arg("roi") = py::none(),
         py::arg("roi_falloff") = 16.0, py::arg("roi_gain") = 8.0, py::arg("spacing") = py::none(),
-        py::arg("origin") = py::none(), py::arg("metadata") = py::none(),
+        py::arg("origin") = py::none(), py::arg("metadata") = py::none(), py::arg("tile") = py::none(),
+        py::arg("threads") = py::none(),
         R"doc(Encode a grid of samples into an MRSV file (as 'mrsv encode').
 
 array: 1 to 3 dimensions, numpy C order (x,), (y, x) or (z, y, x): the last
@@ -396,20 +504,54 @@ Other options as the CLI's: nodata, coding ('wavelet'|'stored'),
   roi (('box', lo, hi) or ('ellipsoid', centre, semi_axes), x, y, z order),
   roi_falloff, roi_gain. spacing, origin: per axis in x, y, z order (the
   meta chunk's order); metadata: a dict of str to str (spec 2.6).
-Returns a dict: bytes, bits_per_sample, psnr, max_abs_error, levels, ...)doc");
+tile: a tiled stream (spec 11, as 'mrsv encode --tile'): an int for every
+  axis or one size per axis in x, y, z order (like spacing), e.g. 256 (2-D)
+  or 64 (3-D). Each tile is coded on its own, so that decode(region=...)
+  reads only the tiles a box touches. Needs coding='wavelet'; not with roi.
+  An error bound holds on every sample; a rate or PSNR target for the whole
+  grid (one step for all tiles).
+threads: tiles coded at once (default: one per core); the stream is the
+  same whatever the count.
+Returns a dict: bytes, bits_per_sample, psnr, max_abs_error, levels (tiled:
+the most of any tile), kept_coefficients and l2_error (untiled wavelet),
+tile_size (tiled, x, y, z order).)doc");
   m.def("decode", &decode, py::arg("source"), py::kw_only(), py::arg("levels") = 0, py::arg("bytes") = py::none(),
+        py::arg("region") = py::none(), py::arg("threads") = py::none(),
         R"doc(Decode an MRSV grid (as 'mrsv decode').
 
 source: a path or the stream's bytes.
-levels: reduced resolution, stop the synthesis this many levels above the finest.
+levels: reduced resolution, stop the synthesis this many levels above the
+  finest. A tiled stream needs tile sizes that are multiples of 2^levels on
+  every axis with more than one tile (spec 11.6).
 bytes: read only the first N bytes, as if the rest had not arrived.
+region: decode only a box (as 'mrsv decode --region', spec 11.5):
+  ((x0, y0[, z0]), (x1, y1[, z1])), the samples x0 <= x < x1, y0 <= y < y1
+  (z0 <= z < z1), corners in x, y, z order like spacing, one number per
+  axis of the grid. The array returned is in numpy order, shape
+  (z1 - z0, y1 - y0, x1 - x0), and equals
+  decode(source)[0][z0:z1, y0:y1, x0:x1]. From a path (without bytes) a
+  tiled stream reads only its header part and the tiles the box touches
+  (info['bytes_read']); other streams are decoded whole and cropped. With
+  levels=K, the samples of the box on the lattice of every 2^K-th sample.
+threads: tiles decoded at once (default: one per core); the samples are the
+  same whatever the count.
 Returns (array, info): the samples in numpy C order (z, y, x) with the
-stream's dtype, and a dict (shape, sample_type, coding, nodata, wavelet,
-decomposition_levels, bands_decoded, bands_total, residual_decoded, levels,
-complete, bytes, bytes_used, metadata, spacing, origin (x, y, z order, of the
-array returned: with levels, spacing is 2^K times the stream's on an axis of
-K or more levels), error_bound, error_max_abs, error_psnr_db, error_rmse).
-Raises mrsv.Error when the stream breaks a rule.)doc");
+stream's dtype, and a dict: shape (the whole grid's, numpy order),
+sample_type, coding ('stored', 'wavelet' or 'tiled'), nodata, wavelet,
+order, bands_decoded, bands_total (tiled: summed over the tiles decoded),
+decomposition_levels and
+residual_decoded (untiled wavelet), tile_size (tiled, x, y, z order),
+tiles_total (tiled), levels, region (the box, as given, or absent),
+complete (None with region: only part of the stream is read), bytes,
+bytes_read (from the source: with region from a path, what the box needed),
+bytes_used (None with region), metadata, spacing, origin (x, y, z order, of
+the array returned: with levels, spacing is 2^K times the stream's on an
+axis of K or more levels (every axis of a tiled grid or a region); with
+region, origin is moved to the box's first sample, as 'mrsv decode
+--region' writes it, when the stream gives an origin), error_bound,
+error_max_abs, error_psnr_db, error_rmse.
+Raises mrsv.Error when the stream breaks a rule, ValueError for a box
+outside the grid or levels the tiling does not allow.)doc");
 }
 
 }  // namespace mrsv::python

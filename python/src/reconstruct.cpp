@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "common.h"
+#include "region.h"
 #include "mrsv/grid_mesh.h"
 #include "mrsv/quadtree_mesh.h"
 #include "mrsv/terrain_insertion.h"
@@ -29,7 +30,8 @@ ErrorBound errorBoundOf(double value) {
 py::tuple meshGrid(const py::object& source_object, const std::string& method,
                    const std::optional<double>& max_error, const std::optional<uint64_t>& triangles,
                    const std::optional<uint64_t>& tets, int levels, const py::object& byte_limit,
-                   bool border_rule, const std::string& distance, double z_scale, bool remove_vertices) {
+                   bool border_rule, const std::string& distance, double z_scale, bool remove_vertices,
+                   const py::object& region_object) {
   if (method != "insertion" && method != "quadtree") throw py::value_error("method= must be 'insertion' or 'quadtree'");
   if (triangles && tets) throw py::value_error("give triangles= or tets=, not both");
   if ((triangles && *triangles == 0) || (tets && *tets == 0))
@@ -39,22 +41,39 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (distance != "mesh" && distance != "trilinear") throw py::value_error("distance= must be 'mesh' or 'trilinear'");
   if (remove_vertices && method == "insertion" && !max_error)
     throw py::value_error("remove_vertices=True with method='insertion' needs max_error= (spec 8.8)");
+  // spec 8.1 R8.1-3: a region is meshed once from its samples, as 'mrsv mesh --region'.
+  const bool by_region = !region_object.is_none();
+  RegionArgument region;
+  if (by_region) {
+    region = parseGridRegion(region_object);
+    if (levels != 0)
+      throw py::value_error("region= meshes the region's samples once: not with levels= (spec 8.1)");
+  }
   InsertionLimits limits;
   if (max_error) limits.max_error = errorBoundOf(*max_error);
   limits.max_cells = triangles ? *triangles : tets ? *tets : 0;
   limits.border_rule = border_rule;
 
-  Source source = loadSource(source_object);
   DecodeOptions options;
   options.void_values = true;  // no-data samples take their synthesised value (spec 8.1)
-  options.container.allow_partial_tail = applyByteLimit(byte_limit, &source);
+  Source source;
   DecodedGrid grid;
   Error e;
-  {
-    py::gil_scoped_release release;
-    e = decodeGrid(source.data, source.size, options, &grid);
+  if (by_region) {
+    // The field is the region decode's (spec 11.5), a grid of the box's sizes.
+    grid = std::move(decodeRegion(source_object, byte_limit, region, options).grid);
+    grid.header.size_x = grid.output_size[0];
+    grid.header.size_y = grid.output_size[1];
+    grid.header.size_z = grid.output_size[2];
+  } else {
+    source = loadSource(source_object);
+    options.container.allow_partial_tail = applyByteLimit(byte_limit, &source);
+    {
+      py::gil_scoped_release release;
+      e = decodeGrid(source.data, source.size, options, &grid);
+    }
+    if (!e.ok()) raiseStreamError(e);
   }
-  if (!e.ok()) raiseStreamError(e);
   if (!grid.has_samples) throw py::value_error("the stream holds no samples yet (no band in the bytes read)");
   const int dims = grid.header.num_dims;
   if (dims == 1) throw py::value_error("mesh_grid meshes 2-D and 3-D grids");
@@ -65,7 +84,13 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   if (distance == "trilinear" && (dims == 2 || !max_error))
     throw py::value_error("distance='trilinear' is for 3-D grids with max_error=");
   // The finest stage the bytes and levels= allow (spec 8.7); not refined stage by stage.
-  std::vector<ReconstructionStage> stages = reconstructionStages(grid, source.size, static_cast<unsigned>(levels));
+  // A region: one stage on the samples already decoded.
+  std::vector<ReconstructionStage> stages =
+      by_region ? std::vector<ReconstructionStage>{{source.size, 0}}
+                : reconstructionStages(grid, source.size, static_cast<unsigned>(levels));
+  if (stages.empty() && grid.header.coding == GridCoding::kTiled)
+    throw py::value_error("levels= is not defined for tiled grids in this version (spec 8.7 stages are the levels "
+                          "of one wavelet pyramid); mesh the whole grid, or decode with levels= first");
   if (stages.empty()) throw py::value_error("levels= leaves no complete level in the bytes read");
   const ReconstructionStage stage = stages.back();
 
@@ -106,6 +131,8 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
   GridMeshGeometry geometry;
   geometry.z_scale = z_scale;
   if (!gridMeshGeometryFromMetadata(grid.metadata, dims, &geometry, &error)) throw py::value_error(error);
+  if (by_region)  // positions in the whole grid's frame, so that adjacent boxes meet
+    for (int a = 0; a < 3; ++a) geometry.origin[a] += double(region.box.lo[a]) * geometry.spacing[a];
   if (dims == 2) {
     TriangleMesh t = gridMeshToTriangles(mesh, geometry);
     return py::make_tuple(rowsToArray<double>(t.positions), rowsToArray<int32_t>(t.triangles),
@@ -123,6 +150,7 @@ void registerReconstruct(py::module_& m) {
         py::arg("max_error") = py::none(), py::arg("triangles") = py::none(), py::arg("tets") = py::none(),
         py::arg("levels") = 0, py::arg("bytes") = py::none(), py::arg("border_rule") = true,
         py::arg("distance") = "mesh", py::arg("z_scale") = 1.0, py::arg("remove_vertices") = false,
+        py::arg("region") = py::none(),
         R"doc(An adaptive mesh of a grid stream of integer samples (as 'mrsv mesh').
 
 method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
@@ -130,8 +158,16 @@ method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
 (2-D) / tets= (3-D) cells. levels and bytes choose the stage as in decode;
 border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D), z_scale and
 remove_vertices (2-D: the vertex-removal pass of spec 9.7 and 8.8) as the
-CLI's. Returns (vertices (N, 3) float64 in the meta chunk's spacing and origin (2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values
-(N,) float64 samples at the vertices).)doc");
+CLI's. A tiled stream (encode(tile=...)) is meshed whole, without levels.
+region: mesh only a box (as 'mrsv mesh --region', spec 8.1):
+((x0, y0[, z0]), (x1, y1[, z1])), half-open, x, y, z order as in decode.
+From a path a tiled stream reads only the tiles the box touches. The
+vertices are in the whole grid's frame, so that two boxes sharing a side
+have the same vertices on it (with border_rule, or the quadtree with
+max_error) and meet without cracks. Not with levels.
+Returns (vertices (N, 3) float64 in the meta chunk's spacing and origin
+(2-D: z = sample * z_scale), cells (M, 3) or (M, 4) int32, values (N,)
+float64 samples at the vertices).)doc");
 }
 
 }  // namespace mrsv::python

@@ -1,5 +1,6 @@
 """Paths to the real data the tests read: the bundled crops (demo/data) and
-../shared/data (MRSV_SHARED_DATA when ctest runs them)."""
+../shared/data (MRSV_SHARED_DATA when ctest runs them); the CLI of the build
+(MRSV_BUILD_DIR) for the tests that compare with it."""
 import os
 import pathlib
 
@@ -9,6 +10,7 @@ import pytest
 SOURCE_DIR = pathlib.Path(os.environ.get("MRSV_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 SHARED_DATA = pathlib.Path(os.environ.get("MRSV_SHARED_DATA", SOURCE_DIR.parent / "shared" / "data"))
 CROPS = SOURCE_DIR / "demo" / "data"
+BUILD_DIR = pathlib.Path(os.environ.get("MRSV_BUILD_DIR", SOURCE_DIR / "build"))
 
 
 def raw(name, dtype, shape):
@@ -42,4 +44,12 @@ def shared(relative):
     path = SHARED_DATA / relative
     if not path.exists():
         pytest.fail(f"{path} is missing: ../shared/data must be beside the project")
+    return path
+
+
+def cli():
+    """The 'mrsv' command of the build the module comes from."""
+    path = BUILD_DIR / "mrsv"
+    if not path.exists():
+        pytest.fail(f"{path} is missing: build the 'mrsv' target (MRSV_BUILD_DIR names the build)")
     return path

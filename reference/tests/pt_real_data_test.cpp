@@ -94,7 +94,7 @@ void checkEveryBatchLevel(const std::string& name, const TetMesh& mesh) {
   EXPECT_LT(pt.header().base_tet_count, mesh.tets.size() / 20) << "simplified too little";
   // The finest level holds the input's tets (as sets of positions).
   std::multiset<std::array<int32_t, 12>> in, out;
-  auto key = [](const std::vector<Point3i>& p, Tet t) {
+  auto key = [](const auto& p, Tet t) {
     std::sort(t.begin(), t.end(), [&](uint32_t a, uint32_t b) { return p[a] < p[b]; });
     std::array<int32_t, 12> k;
     for (int i = 0; i < 4; ++i)

@@ -47,7 +47,8 @@ std::vector<std::vector<PtCollapse>> trialCollapses(const QuantizedTets& mesh, s
 
 // The mesh as a set of tets of positions, independent of numbering and of
 // the order of a tet's corners up to an even permutation.
-std::multiset<std::vector<int64_t>> geometry(const std::vector<Point3i>& p, const std::vector<Tet>& tets) {
+template <class Points, class Tets>
+std::multiset<std::vector<int64_t>> geometry(const Points& p, const Tets& tets) {
   std::multiset<std::vector<int64_t>> out;
   for (const Tet& t : tets) {
     // Rotate the smallest corner to the front by an even permutation.

@@ -16,7 +16,7 @@ constexpr size_t kLargePage = size_t{2} << 20;  // 2 MiB, x86-64 and arm64 with 
 void* allocateLarge(size_t bytes) {
   if (bytes == 0) bytes = 1;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (bytes >= 2 * kLargePage) {
+  if (bytes >= kLargePage / 2) {
     // aligned_alloc wants a multiple of the alignment.
     const size_t rounded = (bytes + kLargePage - 1) / kLargePage * kLargePage;
     if (rounded < bytes) return nullptr;

@@ -12,7 +12,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <new>
+#include <vector>
 
 namespace mrsv {
 
@@ -33,5 +36,34 @@ LargeArray<T> makeLargeArray(uint64_t n) {
   if (n > SIZE_MAX / sizeof(T)) return nullptr;
   return LargeArray<T>(static_cast<T*>(allocateLarge(static_cast<size_t>(n) * sizeof(T))));
 }
+
+// An allocator for std::vector that takes arrays of 1 MiB or more from
+// allocateLarge(): a decoder's mesh arrays (PT, spec 7), which it reserves
+// once from the sizes its header announces and then fills split by split.
+// With 4 KiB pages the first touch of each page faulted: about 10 % of a
+// PT decode of the CT crop (perf; 2,600 faults per decode).
+template <class T>
+struct LargePageAllocator {
+  using value_type = T;
+  LargePageAllocator() = default;
+  template <class U>
+  LargePageAllocator(const LargePageAllocator<U>&) {}
+  T* allocate(size_t n) {
+    if (n > SIZE_MAX / sizeof(T)) throw std::bad_alloc();
+    const size_t bytes = n * sizeof(T);
+    void* p = bytes >= kLargeAllocationBytes ? allocateLarge(bytes) : std::malloc(bytes == 0 ? 1 : bytes);
+    if (!p) throw std::bad_alloc();
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, size_t) { std::free(p); }
+  template <class U>
+  bool operator==(const LargePageAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const LargePageAllocator<U>&) const { return false; }
+  static constexpr size_t kLargeAllocationBytes = size_t{1} << 20;
+};
+
+template <class T>
+using LargeVector = std::vector<T, LargePageAllocator<T>>;
 
 }  // namespace mrsv

@@ -131,7 +131,9 @@ std::vector<int32_t> ProgressiveTetMesh::quantizedScalars() const {
   return {s.begin(), s.begin() + size_t{vertexCount()} * impl_->header.fields.size()};
 }
 
-std::vector<std::array<uint32_t, 4>> ProgressiveTetMesh::tets() const { return impl_->mesh.tets; }
+std::vector<std::array<uint32_t, 4>> ProgressiveTetMesh::tets() const {
+  return {impl_->mesh.tets.begin(), impl_->mesh.tets.end()};
+}
 
 TetMesh ProgressiveTetMesh::mesh() const {
   const PtHeader& h = impl_->header;
@@ -142,7 +144,7 @@ TetMesh ProgressiveTetMesh::mesh() const {
   for (uint32_t v = 0; v < n; ++v)
     for (int a = 0; a < 3; ++a)
       out.positions[v][a] = h.origin[a] + impl_->mesh.positions[v][a] * h.position_step;
-  out.tets = impl_->mesh.tets;
+  out.tets.assign(impl_->mesh.tets.begin(), impl_->mesh.tets.end());
   for (size_t f = 0; f < fc; ++f) {
     ScalarField field;
     field.name = h.fields[f].name;

@@ -18,12 +18,13 @@ bool isProgressiveTetStream(const uint8_t* data, size_t size) {
 namespace {
 
 // spec Annex B.6: what a decoder holds for the whole stream, estimated from
-// THDR before anything is allocated: per vertex its position, values and tet
-// list; per tet its corners and four list entries; per split its record and
-// about 16 moved tets and cut vertices.
+// THDR before anything is allocated, as startFromBase() reserves it: per
+// vertex its position, values, list record and link tag; per tet its corners
+// and the room of eight list entries; per split its record, its tet count
+// and 12 moved tets and 6 cut vertices.
 uint64_t memoryNeeded(const PtHeader& h) {
-  return uint64_t{h.vertex_count} * (12 + 4 * h.fields.size() + 24) + uint64_t{h.tet_count} * (16 + 16) +
-         uint64_t{h.splitCount()} * (sizeof(PtSplitRecord) + 4 + 64);
+  return uint64_t{h.vertex_count} * (12 + 4 * h.fields.size() + 24) + uint64_t{h.tet_count} * (16 + 32) +
+         uint64_t{h.splitCount()} * (sizeof(PtSplitRecord) + 4 + 48 + 24);
 }
 
 // spec 7.7 one split record: the cut, then vt's position and values.
@@ -154,7 +155,8 @@ Error PtSteps::batch(const ChunkView& chunk) {
   // the context is read as each flag is decoded; the run stops before the
   // split that changes the counts).
   const IncidenceLists& incident = s.mesh.incident;
-  auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.size(u) / 2, pt::kFlagContexts - 1); };
+  static_assert(2 * (pt::kFlagContexts - 1) < 255, "the contexts are told apart below 255 tets");
+  auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.sizeUpTo255(u) / 2, pt::kFlagContexts - 1); };
   for (; done < split_count; ++v) {
     v = rc.firstOne(ctx.split_flag, v, vertices, context);
     if (v == vertices) return fail("the flags end before split_count splits");

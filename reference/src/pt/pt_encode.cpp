@@ -267,7 +267,7 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
     s.mesh.positions.push_back(mesh.positions[original[v]]);
     for (size_t f = 0; f < fc; ++f) s.mesh.scalars.push_back(mesh.scalars[original[v] * fc + f]);
   }
-  s.mesh.tets = base_tets;
+  s.mesh.tets.assign(base_tets.begin(), base_tets.end());
 
   ContainerWriter writer;
   const std::vector<uint8_t> header_bytes = serializePtHeader(h);

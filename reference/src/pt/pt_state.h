@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/large_array.h"
 #include "mrsv/progressive_tet_mesh.h"
 #include "tetmesh/star_link.h"
 #include "tetmesh/star_split.h"
@@ -30,10 +31,11 @@ struct ProgressiveTetMesh::Impl {
   // Positions and scalars of every decoded vertex; tets and incidence of the
   // current level (vertices above it have no tets).
   TetComplex mesh;
-  std::vector<PtSplitRecord> splits;
-  std::vector<uint32_t> moved;
-  std::vector<uint32_t> cuts;
-  std::vector<uint32_t> tet_count_after;  // tets after split k
+  // Reserved whole from THDR, in large pages (common/large_array.h).
+  LargeVector<PtSplitRecord> splits;
+  LargeVector<uint32_t> moved;
+  LargeVector<uint32_t> cuts;
+  LargeVector<uint32_t> tet_count_after;  // tets after split k
   uint32_t level = 0;
 
   // Scratch reused by every split.

@@ -74,6 +74,11 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
   const Tet* tets = mesh.tets.data();
   const uint64_t stamp = uint64_t{stamp_} << 32;
   bool fits = faces <= kDenseFaces;
+  // A link is connected (7.3): it has at most faces + 2 vertices; when it
+  // is not (a broken stream), m outgrows the row and the hashed table takes it.
+  const uint32_t shift = faces + 2 <= 64 ? 6 : 7;
+  const uint32_t row_width = 1u << shift;
+  dense_shift_ = shift;
   uint32_t m = 0;
   // The star's tets lie anywhere in the mesh (most first-level cache
   // misses of a split): asked for all at once, they arrive together, where
@@ -113,11 +118,11 @@ void StarLink::build(const TetComplex& mesh, uint32_t v) {
       l[j] = local;
     }
     tris[f] = {l[0], l[1], l[2]};
-    if (fits && m <= kDense) {
+    if (fits && m <= row_width) {
       const uint32_t tag = edge_stamp_;
-      dense[l[0] * kDense + l[1]] = denseEntry(tag, f, l[2]);
-      dense[l[1] * kDense + l[2]] = denseEntry(tag, f, l[0]);
-      dense[l[2] * kDense + l[0]] = denseEntry(tag, f, l[1]);
+      dense[l[0] << shift | l[1]] = denseEntry(tag, f, l[2]);
+      dense[l[1] << shift | l[2]] = denseEntry(tag, f, l[0]);
+      dense[l[2] << shift | l[0]] = denseEntry(tag, f, l[1]);
     } else {
       fits = false;
     }
@@ -230,7 +235,7 @@ uint32_t StarLink::rotationInto(uint32_t p, uint32_t start, std::vector<uint32_t
   if (dense_used_) {
     // p's row of the table and the stamp in registers: through find() both
     // were loaded again at every step, after each store to `out`.
-    const uint32_t* row = dense_.data() + size_t{p} * kDense;
+    const uint32_t* row = dense_.data() + (size_t{p} << dense_shift_);
     const uint32_t stamp = edge_stamp_;
     do {
       const uint32_t e = row[x];

@@ -62,13 +62,14 @@ struct StarLink {
     const StarLink* link;
     const uint32_t* dense;  // nullptr: the hashed table
     uint32_t stamp;
+    uint32_t shift;
     uint32_t triangleHolding(uint32_t a, uint32_t b) const {
       if (dense == nullptr) return link->triangleHolding(a, b);
-      const uint32_t e = dense[a * kDense + b];
+      const uint32_t e = dense[a << shift | b];
       return e >> 16 == stamp ? (e >> 8) & 0xFF : kNoTriangle;
     }
   };
-  Lookup lookup() const { return Lookup{this, dense_used_ ? dense_.data() : nullptr, edge_stamp_}; }
+  Lookup lookup() const { return Lookup{this, dense_used_ ? dense_.data() : nullptr, edge_stamp_, dense_shift_}; }
   // The triangle across the edge from triangle f's j-th vertex to its next
   // one (it holds that edge reversed), or -1 on the link's boundary.
   int64_t across(uint32_t f, int j) const { return triangleFrom(triangles[f][(j + 1) % 3], triangles[f][j]); }
@@ -91,7 +92,7 @@ struct StarLink {
   // it fails): the region's flood (star_split.cpp) stops at the cut so.
   void forgetEdge(uint32_t a, uint32_t b) {
     if (dense_used_) {
-      dense_[a * kDense + b] = 0;  // the stamp 0 is never a build's
+      dense_[a << dense_shift_ | b] = 0;  // the stamp 0 is never a build's
       return;
     }
     const uint32_t e = findHashed(a, b);
@@ -103,14 +104,20 @@ struct StarLink {
 
  private:
   static constexpr uint32_t kNone = UINT32_MAX;
-  static constexpr uint32_t kDense = 64;        // links of at most this many vertices use dense_
-  static constexpr uint32_t kDenseFaces = 256;  // and fewer triangles (a sphere on 64 has 124)
+  // Links of at most kDense vertices and kDenseFaces triangles use dense_
+  // (a sphere on 128 vertices has 252 triangles), rows of 2^dense_shift_
+  // entries: 64 for a link of at most 62 triangles (at most 64 vertices),
+  // 128 above. One width for all made the CT crop's links (all below 64
+  // vertices) 5 % slower at 128, the hand's (some above) 4 % slower at 64,
+  // where their links went to the hashed table (pt_decode_bench).
+  static constexpr uint32_t kDense = 128;
+  static constexpr uint32_t kDenseFaces = 256;
   // A dense entry: the build's 16-bit stamp, the triangle, the third vertex.
   static uint32_t denseEntry(uint32_t stamp, uint32_t f, uint32_t third) { return stamp << 16 | f << 8 | third; }
   // The entry of the directed edge a -> b, or kNone.
   uint32_t find(uint32_t a, uint32_t b) const {
     if (dense_used_) {
-      const uint32_t e = dense_[a * kDense + b];
+      const uint32_t e = dense_[a << dense_shift_ | b];
       return e >> 16 == edge_stamp_ ? e : kNone;
     }
     return findHashed(a, b);
@@ -139,7 +146,8 @@ struct StarLink {
   uint32_t mask_ = 0;
   int shift_ = 60;  // 64 - log2(capacity), set by build()
   bool dense_used_ = false;
-  std::vector<uint32_t> dense_;  // per a * kDense + b: denseEntry() when a -> b is an edge of this build
+  std::vector<uint32_t> dense_;  // per a << dense_shift_ | b: denseEntry() when a -> b is an edge of this build
+  uint32_t dense_shift_ = 6;
   uint32_t edge_stamp_ = 0;      // 16 bits: dense_ is cleared when it wraps
   // Scratch of build(): per vertex number, the stamp of the last build that
   // met it (high 32 bits) and its local index there.

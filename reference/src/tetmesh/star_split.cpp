@@ -93,7 +93,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
       return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
 
   // Step 2, as applySplit() does it.
-  std::vector<Tet>& tets = mesh->tets;
+  auto& tets = mesh->tets;
   const uint32_t first_new = static_cast<uint32_t>(tets.size());
   IncidenceLists& incident = mesh->incident;
   // vt's list is new: sized once for its moved and new tets and a few more,

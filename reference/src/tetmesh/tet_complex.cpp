@@ -164,18 +164,29 @@ std::string checkLinkIsSphereOrDisk(const Link& link) {
   const uint32_t m = static_cast<uint32_t>(link.vertices.size());
   const uint32_t faces = static_cast<uint32_t>(link.triangles.size());
   if (faces == 0) return "has no tets";
+  // Linear in the link's corners: the repeated neighbours of p counted in
+  // one array, and an edge's other side read from the corner table (across(),
+  // corner_prev) rather than searched among the neighbour's corners, which
+  // made the check quadratic in the degrees (a sixth of the bunny's decode,
+  // whose base mesh has stars of hundreds of tets).
   uint64_t boundary_edges = 0;
-  std::vector<uint32_t> fan;
+  std::vector<uint32_t> fan, count(m, 0);
   for (uint32_t p = 0; p < m; ++p) {
-    for (uint32_t k = link.corner_begin[p]; k < link.corner_begin[p + 1]; ++k) {
-      for (uint32_t j = k + 1; j < link.corner_begin[p + 1]; ++j)
-        if (link.corners[j][0] == link.corners[k][0])
-          return "faces with vertex " + std::to_string(link.vertices[p]) + " and " +
-                 std::to_string(link.vertices[link.corners[k][0]]) +
-                 " are not shared by at most two tets of opposite orientation";
-      if (link.triangleFrom(link.corners[k][0], p) < 0) ++boundary_edges;
+    const uint32_t begin = link.corner_begin[p], end = link.corner_begin[p + 1];
+    for (uint32_t k = begin; k < end; ++k) ++count[link.corners[k][0]];
+    // The first corner of p whose neighbour q comes again.
+    for (uint32_t k = begin; k < end; ++k)
+      if (count[link.corners[k][0]] > 1)
+        return "faces with vertex " + std::to_string(link.vertices[p]) + " and " +
+               std::to_string(link.vertices[link.corners[k][0]]) +
+               " are not shared by at most two tets of opposite orientation";
+    for (uint32_t k = begin; k < end; ++k) {
+      count[link.corners[k][0]] = 0;
+      // Without repeated neighbours, no triangle (p, x, q) ends where corner
+      // (q, r) starts exactly when the edge q -> p has no triangle.
+      if (link.corner_prev[k] == UINT32_MAX) ++boundary_edges;
     }
-    if (!link.rotation(p, link.corners[link.corner_begin[p]][0], &fan))
+    if (!link.rotation(p, link.corners[begin][0], &fan))
       return "edge to vertex " + std::to_string(link.vertices[p]) + " is not manifold (its tets form several fans)";
   }
   // Connected: a walk over the triangles across their shared edges.
@@ -183,9 +194,9 @@ std::string checkLinkIsSphereOrDisk(const Link& link) {
   std::vector<uint32_t> queue{0};
   seen[0] = 1;
   for (size_t i = 0; i < queue.size(); ++i) {
-    const auto& tri = link.triangles[queue[i]];
+    const uint32_t f = queue[i];
     for (int j = 0; j < 3; ++j) {
-      const int64_t g = link.triangleFrom(tri[(j + 1) % 3], tri[j]);
+      const int64_t g = link.across(f, j);
       if (g >= 0 && !seen[g]) {
         seen[g] = 1;
         queue.push_back(static_cast<uint32_t>(g));

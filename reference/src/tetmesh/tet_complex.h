@@ -101,9 +101,10 @@ struct Link {
 class TetComplex {
  public:
   int field_count = 0;
-  std::vector<Point3i> positions;
-  std::vector<int32_t> scalars;  // field_count per vertex
-  std::vector<Tet> tets;
+  // Large-page arrays: a PT decoder reserves them whole from THDR (7.2).
+  LargeVector<Point3i> positions;
+  LargeVector<int32_t> scalars;  // field_count per vertex
+  LargeVector<Tet> tets;
   IncidenceLists incident;  // the tet slots of each vertex
   // Every coordinate is in [0, 2^position_bits): set by a PT decoder, which
   // checks each decoded coordinate against it. At 20 or less orientation()

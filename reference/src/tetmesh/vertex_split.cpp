@@ -111,7 +111,7 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
   // vs keeps the tets that did not move: those that still have vs as a
   // corner (a moved tet has vt in its place now, and no tet repeats a
   // corner). The order of the rest is kept.
-  const std::vector<Tet>& tets = mesh->tets;
+  const auto& tets = mesh->tets;
   uint32_t* star_vs = incident.data(vs);
   uint32_t kept = 0;
   for (uint32_t f = 0; f < incident.size(vs); ++f) {
