@@ -15,6 +15,7 @@
 
 #include "grid_mesh_checks.h"
 #include "mrsv/quadtree_mesh.h"
+#include "reconstruct/candidate_queue.h"
 #include "reconstruct/delaunay2.h"
 
 namespace mrsv {
@@ -275,6 +276,48 @@ TEST(TerrainInsertion, WideSamplesGiveTheSameMesh) {
     GridMesh narrow_mesh = insertionMesh(f, e), wide_mesh = insertionMesh(wide, wide_e);
     EXPECT_EQ(narrow_mesh.points, wide_mesh.points) << e;
     EXPECT_EQ(narrow_mesh.cells, wide_mesh.cells) << e;
+  }
+}
+
+// The queue's order (spec 8.5: larger error, then smaller sample) with exact
+// entries, which keep only their key, sample and den, against inexact ones
+// of the same errors (num and den times 2^21): every tie between the two
+// kinds goes to the exact comparison. Cells are set, set again and removed
+// at random; the top is always the worst of those left.
+TEST(CandidateQueue, OrderOfExactAndInexactEntries) {
+  std::mt19937_64 rng(22);
+  reconstruct::CandidateQueue queue;
+  queue.clear();
+  std::map<uint32_t, reconstruct::Candidate> live;
+  const auto random = [&] {
+    reconstruct::Candidate c;
+    c.den = int64_t(rng() % 64) + 1;
+    c.num = __int128(rng() % (64 * c.den)) + 1;
+    c.sample = rng() % 50;
+    if (rng() % 3 == 0) c.num <<= 21, c.den <<= 21;
+    return c;
+  };
+  for (int step = 0; step < 20000; ++step) {
+    const uint32_t cell = uint32_t(rng() % 300);
+    if (rng() % 4 == 0) {
+      queue.remove(cell);
+      live.erase(cell);
+    } else {
+      const reconstruct::Candidate c = random();
+      queue.set(cell, c);
+      live[cell] = c;
+    }
+    if (step % 7 == 0 && !live.empty()) {
+      auto worst = live.begin();
+      for (auto it = live.begin(); it != live.end(); ++it)
+        if (reconstruct::worse(it->second, worst->second) ||
+            (!reconstruct::worse(worst->second, it->second) && it->first > worst->first))
+          worst = it;
+      ASSERT_FALSE(queue.empty());
+      EXPECT_EQ(queue.topSample(), worst->second.sample) << step;
+      const reconstruct::Candidate& top = live.at(queue.top());
+      EXPECT_FALSE(reconstruct::worse(worst->second, top)) << step;
+    }
   }
 }
 

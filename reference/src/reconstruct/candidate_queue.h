@@ -5,9 +5,9 @@
 // stale one.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <functional>
 #include <new>
 #include <unordered_map>
 #include <vector>
@@ -32,14 +32,9 @@ class CandidateQueue {
  public:
   static constexpr uint32_t kAbsent = UINT32_MAX;
 
-  // `recompute` gives the candidate of a queued cell again (the owner scans
-  // it): an exact entry keeps no copy, and the rare near-tie of an exact
-  // entry with an inexact one is settled with it.
-  explicit CandidateQueue(std::function<Candidate(uint32_t cell)> recompute) : recompute_(std::move(recompute)) {}
-
   void clear() {
     heap_.assign(kRoot, Entry{});
-    pos_.clear();
+    slots_.clear();
     inexact_.clear();
   }
   bool empty() const { return heap_.size() <= kRoot; }
@@ -57,18 +52,19 @@ class CandidateQueue {
     // (An exact entry carries all it needs; an inexact one's candidate is
     // kept aside, and a cell's stale one is overwritten or never read.)
     if (!exact) inexact_[cell] = c;
+    slots_[cell].den = exact ? uint32_t(c.den) : 0;
     // (An exact num converts from 64 bits, without the 128-bit library call.)
     const double num = exact ? double(int64_t(c.num)) : double(c.num);
     const double key = num / double(c.den);
     uint64_t bits;
     std::memcpy(&bits, &key, sizeof bits);
     const Entry e{bits, exact ? uint64_t(kMaxTie - c.sample) << 32 | cell : kInexact | cell};
-    if (pos_[cell] == kAbsent) {
+    if (slots_[cell].pos == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);
       return;
     }
-    const uint32_t i = pos_[cell];
+    const uint32_t i = slots_[cell].pos;
     if (i > kRoot && before(e, at(parent(i)))) siftUp(i, e);
     else siftDown(i, e);
   }
@@ -76,14 +72,14 @@ class CandidateQueue {
   // Starts loading what set() or remove() of `cell` reads first (its heap
   // position, a random read): for a caller with work to do in between.
   void prefetch(uint32_t cell) const {
-    if (cell < pos_.size()) __builtin_prefetch(&pos_[cell]);
+    if (cell < slots_.size()) __builtin_prefetch(&slots_[cell]);
   }
 
   // Removes the entry of `cell`, if any.
   void remove(uint32_t cell) {
-    if (cell >= pos_.size() || pos_[cell] == kAbsent) return;
-    const uint32_t i = pos_[cell];
-    pos_[cell] = kAbsent;
+    if (cell >= slots_.size() || slots_[cell].pos == kAbsent) return;
+    const uint32_t i = slots_[cell].pos;
+    slots_[cell].pos = kAbsent;
     const Entry last = heap_.back();
     heap_.pop_back();
     if (last.cell() == cell) return;
@@ -139,9 +135,9 @@ class CandidateQueue {
   const Entry& at(uint32_t i) const { return heap_[i]; }
 
   void grow(uint32_t cell) {
-    if (cell < pos_.size()) return;
+    if (cell < slots_.size()) return;
     const size_t n = size_t(cell) + 1 + (size_t(cell) >> 1);
-    pos_.resize(n, kAbsent);
+    slots_.resize(n, Slot{kAbsent, 0});
   }
   // Whether a comes before b.
   bool before(const Entry& a, const Entry& b) const {
@@ -159,12 +155,23 @@ class CandidateQueue {
     if (kb > ka * (1 + 0x1p-40)) return false;
     return worse(candidate(a), candidate(b));
   }
+  // An exact entry's candidate from its key and its cell's den: the key is
+  // num / den (1 + d1), |d1| <= 2^-53, and key * den in doubles is
+  // num (1 + d1) (1 + d2), within 2^30 * 2.1 * 2^-53 < 2^-22 of num, which
+  // it rounds to.
   Candidate candidate(const Entry& e) const {
-    return e.tie & kInexact ? inexact_.at(e.cell()) : recompute_(e.cell());
+    if (e.tie & kInexact) return inexact_.at(e.cell());
+    double key;
+    std::memcpy(&key, &e.key, sizeof key);
+    Candidate c;
+    c.den = slots_[e.cell()].den;
+    c.num = std::llround(key * double(c.den));
+    c.sample = kMaxTie - (e.tie >> 32);
+    return c;
   }
   void place(uint32_t i, const Entry& e) {
     at(i) = e;
-    pos_[e.cell()] = i;
+    slots_[e.cell()].pos = i;
   }
   void siftUp(uint32_t i, const Entry& e) {
     while (i > kRoot) {
@@ -199,12 +206,16 @@ class CandidateQueue {
   }
 
   std::vector<Entry, LineAligned<Entry>> heap_ = std::vector<Entry, LineAligned<Entry>>(kRoot);  // from position 3
-  std::vector<uint32_t> pos_;  // per cell: position in the heap, or kAbsent
+  // Per cell: its position in the heap (or kAbsent) and, for an exact
+  // entry, its den (below 2^20), read with the position at every set.
+  struct Slot {
+    uint32_t pos, den;
+  };
+  std::vector<Slot> slots_;
   // The candidates of inexact entries (few: the largest cells' errors), by
   // cell. A per-cell array of them was a random write of its own at every
   // set, and most of the memory the insertion touched.
   std::unordered_map<uint32_t, Candidate> inexact_;
-  std::function<Candidate(uint32_t cell)> recompute_;
 };
 
 }  // namespace mrsv::reconstruct

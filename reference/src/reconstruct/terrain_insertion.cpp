@@ -42,7 +42,7 @@ struct TerrainInserter::State {
   // at every insertion, the sample would be a cache miss of its own: the
   // scans read short_values).
   std::vector<int32_t> vertex_value;
-  CandidateQueue queue{[this](uint32_t t) { return candidate(t); }};  // triangles whose worst sample is beyond the bound
+  CandidateQueue queue;                 // triangles whose worst sample is beyond the bound
   // This stage's bound: candidates within it are never inserted, so they are
   // not queued (num < 0: no bound).
   __int128 bound_num = -1;
@@ -119,7 +119,7 @@ struct TerrainInserter::State {
     }
   }
 
-  // The same, as a candidate, for the queue and maxError().
+  // The same, as a candidate, for maxError().
   Candidate candidate(uint32_t t) {
     Worst<__int128> w;
     if (step == 1) w = narrow ? widen(scanWith<int64_t, true, int32_t>(t)) : scanWith<__int128, true, int32_t>(t);
