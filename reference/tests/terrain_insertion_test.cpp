@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -276,6 +278,25 @@ TEST(TerrainInsertion, WideSamplesGiveTheSameMesh) {
     GridMesh narrow_mesh = insertionMesh(f, e), wide_mesh = insertionMesh(wide, wide_e);
     EXPECT_EQ(narrow_mesh.points, wide_mesh.points) << e;
     EXPECT_EQ(narrow_mesh.cells, wide_mesh.cells) << e;
+  }
+}
+
+// An exact heap entry's error back from its key alone, in lowest terms:
+// random errors and the extremes.
+TEST(CandidateQueue, ExactErrorFromItsKey) {
+  std::mt19937_64 rng(8);
+  std::vector<std::pair<int64_t, int64_t>> errors = {
+      {1, 1}, {1, (1 << 20) - 1}, {(1 << 30) - 1, 1}, {(1 << 30) - 1, (1 << 20) - 1}, {(1 << 30) - 2, (1 << 20) - 2}};
+  for (int i = 0; i < 100000; ++i) errors.push_back({int64_t(rng() % ((1 << 30) - 1)) + 1, int64_t(rng() % ((1 << 20) - 1)) + 1});
+  for (const auto& [num, den] : errors) {
+    const double key = double(num) / double(den);
+    uint64_t bits;
+    std::memcpy(&bits, &key, sizeof bits);
+    int64_t n = 0, d = 0;
+    reconstruct::CandidateQueue::exactError(bits, &n, &d);
+    const int64_t g = std::gcd(num, den);
+    ASSERT_EQ(n, num / g) << num << " / " << den;
+    ASSERT_EQ(d, den / g) << num << " / " << den;
   }
 }
 

@@ -5,7 +5,6 @@
 // stale one.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -34,7 +33,7 @@ class CandidateQueue {
 
   void clear() {
     heap_.assign(kRoot, Entry{});
-    slots_.clear();
+    pos_.clear();
     inexact_.clear();
   }
   bool empty() const { return heap_.size() <= kRoot; }
@@ -52,19 +51,18 @@ class CandidateQueue {
     // (An exact entry carries all it needs; an inexact one's candidate is
     // kept aside, and a cell's stale one is overwritten or never read.)
     if (!exact) inexact_[cell] = c;
-    slots_[cell].den = exact ? uint32_t(c.den) : 0;
     // (An exact num converts from 64 bits, without the 128-bit library call.)
     const double num = exact ? double(int64_t(c.num)) : double(c.num);
     const double key = num / double(c.den);
     uint64_t bits;
     std::memcpy(&bits, &key, sizeof bits);
     const Entry e{bits, exact ? uint64_t(kMaxTie - c.sample) << 32 | cell : kInexact | cell};
-    if (slots_[cell].pos == kAbsent) {
+    if (pos_[cell] == kAbsent) {
       heap_.push_back(e);
       siftUp(uint32_t(heap_.size() - 1), e);
       return;
     }
-    const uint32_t i = slots_[cell].pos;
+    const uint32_t i = pos_[cell];
     if (i > kRoot && before(e, at(parent(i)))) siftUp(i, e);
     else siftDown(i, e);
   }
@@ -72,14 +70,51 @@ class CandidateQueue {
   // Starts loading what set() or remove() of `cell` reads first (its heap
   // position, a random read): for a caller with work to do in between.
   void prefetch(uint32_t cell) const {
-    if (cell < slots_.size()) __builtin_prefetch(&slots_[cell]);
+    if (cell < pos_.size()) __builtin_prefetch(&pos_[cell]);
+  }
+
+  // The error num / den of an exact entry (0 < num < 2^30, 0 < den < 2^20)
+  // from its key, the double nearest to it, in lowest terms, with integers
+  // alone: two such errors differ relatively by more than 2^-50 (above), the
+  // key from the error by at most 2^-53, so the error is the fraction of
+  // denominator below 2^20 nearest to the key, which is the last convergent
+  // of the key's continued fraction within that bound or the largest
+  // semiconvergent after it. (An exact entry keeps no candidate: a cell's
+  // triangle changes before its scan replaces its entry, so the triangle
+  // would not give it.)
+  static void exactError(uint64_t key_bits, int64_t* num, int64_t* den) {
+    using U = unsigned __int128;
+    // The key, a normal double in [2^-20, 2^30), is a / b exactly: its
+    // 53-bit significand over 2^(1075 - biased exponent) <= 2^72.
+    const U a = U((key_bits & ((uint64_t{1} << 52) - 1)) | uint64_t{1} << 52);
+    const U b = U{1} << (1075 - int(key_bits >> 52));
+    constexpr U kMax = U(kExactDen - 1);
+    U p0 = 0, q0 = 1, p1 = 1, q1 = 0, n = a, d = b;
+    while (d != 0) {
+      const U c = n / d;
+      if (q0 + c * q1 > kMax) break;  // (c q1 < 2^92)
+      const U p2 = p0 + c * p1, q2 = q0 + c * q1;
+      p0 = p1, q0 = q1, p1 = p2, q1 = q2;
+      const U r = n - c * d;
+      n = d, d = r;
+    }
+    if (d != 0) {
+      // The semiconvergent with the largest denominator within the bound,
+      // if nearer to a / b than p1 / q1: |p b - a q| / q compared across, the
+      // products below 2^112 (|p / q - a / b| <= 1, q < 2^20).
+      const U k = (kMax - q0) / q1;
+      const U ps = p0 + k * p1, qs = q0 + k * q1;
+      const auto gap = [&](U p, U q) { return p * b > a * q ? p * b - a * q : a * q - p * b; };
+      if (gap(ps, qs) * q1 < gap(p1, q1) * qs) p1 = ps, q1 = qs;
+    }
+    *num = int64_t(p1), *den = int64_t(q1);
   }
 
   // Removes the entry of `cell`, if any.
   void remove(uint32_t cell) {
-    if (cell >= slots_.size() || slots_[cell].pos == kAbsent) return;
-    const uint32_t i = slots_[cell].pos;
-    slots_[cell].pos = kAbsent;
+    if (cell >= pos_.size() || pos_[cell] == kAbsent) return;
+    const uint32_t i = pos_[cell];
+    pos_[cell] = kAbsent;
     const Entry last = heap_.back();
     heap_.pop_back();
     if (last.cell() == cell) return;
@@ -135,9 +170,9 @@ class CandidateQueue {
   const Entry& at(uint32_t i) const { return heap_[i]; }
 
   void grow(uint32_t cell) {
-    if (cell < slots_.size()) return;
+    if (cell < pos_.size()) return;
     const size_t n = size_t(cell) + 1 + (size_t(cell) >> 1);
-    slots_.resize(n, Slot{kAbsent, 0});
+    pos_.resize(n, kAbsent);
   }
   // Whether a comes before b.
   bool before(const Entry& a, const Entry& b) const {
@@ -155,23 +190,20 @@ class CandidateQueue {
     if (kb > ka * (1 + 0x1p-40)) return false;
     return worse(candidate(a), candidate(b));
   }
-  // An exact entry's candidate from its key and its cell's den: the key is
-  // num / den (1 + d1), |d1| <= 2^-53, and key * den in doubles is
-  // num (1 + d1) (1 + d2), within 2^30 * 2.1 * 2^-53 < 2^-22 of num, which
-  // it rounds to.
+  // An exact entry's candidate from its key (the error in lowest terms: the
+  // comparisons read its value).
   Candidate candidate(const Entry& e) const {
     if (e.tie & kInexact) return inexact_.at(e.cell());
-    double key;
-    std::memcpy(&key, &e.key, sizeof key);
     Candidate c;
-    c.den = slots_[e.cell()].den;
-    c.num = std::llround(key * double(c.den));
+    int64_t num = 0, den = 1;
+    exactError(e.key, &num, &den);
+    c.num = num, c.den = den;
     c.sample = kMaxTie - (e.tie >> 32);
     return c;
   }
   void place(uint32_t i, const Entry& e) {
     at(i) = e;
-    slots_[e.cell()].pos = i;
+    pos_[e.cell()] = i;
   }
   void siftUp(uint32_t i, const Entry& e) {
     while (i > kRoot) {
@@ -206,12 +238,7 @@ class CandidateQueue {
   }
 
   std::vector<Entry, LineAligned<Entry>> heap_ = std::vector<Entry, LineAligned<Entry>>(kRoot);  // from position 3
-  // Per cell: its position in the heap (or kAbsent) and, for an exact
-  // entry, its den (below 2^20), read with the position at every set.
-  struct Slot {
-    uint32_t pos, den;
-  };
-  std::vector<Slot> slots_;
+  std::vector<uint32_t> pos_;  // per cell: position in the heap, or kAbsent
   // The candidates of inexact entries (few: the largest cells' errors), by
   // cell. A per-cell array of them was a random write of its own at every
   // set, and most of the memory the insertion touched.
