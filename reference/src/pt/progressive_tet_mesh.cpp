@@ -89,6 +89,15 @@ void ProgressiveTetMesh::Impl::undo(uint32_t k) {
   undoSplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
 }
 
+void ProgressiveTetMesh::Impl::prefetchSplit(uint32_t k) const {
+  const PtSplitRecord& r = splits[k];
+  const uint32_t vt = header.base_vertex_count + k;
+  mesh.incident.prefetch(r.vs);
+  mesh.incident.prefetch(vt);
+  for (uint32_t i = 0; i < r.cut_length; ++i) mesh.incident.prefetch(cuts[r.cut_begin + i]);
+  for (uint32_t i = 0; i < r.moved_count; ++i) __builtin_prefetch(&mesh.tets[moved[r.moved_begin + i]], 1);
+}
+
 ProgressiveTetMesh::ProgressiveTetMesh() : impl_(std::make_unique<Impl>()) {}
 ProgressiveTetMesh::~ProgressiveTetMesh() = default;
 ProgressiveTetMesh::ProgressiveTetMesh(ProgressiveTetMesh&&) noexcept = default;
@@ -117,8 +126,21 @@ uint32_t ProgressiveTetMesh::finestLevelWithin(uint64_t max_tets) const {
 
 void ProgressiveTetMesh::setLevel(uint32_t level) {
   level = std::min(level, splitsDecoded());
-  while (impl_->level < level) impl_->redo(impl_->level++);
-  while (impl_->level > level) impl_->undo(--impl_->level);
+  // Moving between levels is a few scattered writes per split: in a mesh
+  // larger than the caches, the tets, lists and cut vertices of the split 4
+  // further on are asked for while this one is redone or undone (CT crop,
+  // 178,746 tets: reaching 10 % of them from the finest 2.97-3.50 ->
+  // 2.32-2.80 ms). In a smaller one all is at hand and the prefetches only
+  // cost (the hand, 29,998 tets: 15 to 25 % slower with them).
+  const bool ahead = impl_->mesh.tets.size() >= (1u << 16);
+  while (impl_->level < level) {
+    if (ahead && impl_->level + 4 < level) impl_->prefetchSplit(impl_->level + 4);
+    impl_->redo(impl_->level++);
+  }
+  while (impl_->level > level) {
+    if (ahead && impl_->level >= level + 5) impl_->prefetchSplit(impl_->level - 5);
+    impl_->undo(--impl_->level);
+  }
 }
 
 std::vector<std::array<int32_t, 3>> ProgressiveTetMesh::quantizedPositions() const {

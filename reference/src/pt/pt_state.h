@@ -63,6 +63,8 @@ struct ProgressiveTetMesh::Impl {
   void recordSplit(uint32_t vs, bool closed);
   void redo(uint32_t k);
   void undo(uint32_t k);
+  // Starts loading what redo(k) and undo(k) change (lists, moved tets).
+  void prefetchSplit(uint32_t k) const;
 };
 
 }  // namespace mrsv

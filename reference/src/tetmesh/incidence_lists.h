@@ -71,6 +71,12 @@ class IncidenceLists {
   bool empty(uint32_t v) const { return list_[v].size == 0; }
   View of(uint32_t v) const { return View{pool_.data() + list_[v].offset, list_[v].size}; }
   uint32_t* data(uint32_t v) { return pool_.data() + list_[v].offset; }
+  // Starts loading v's list record, for a caller that knows which lists it
+  // changes next (undoing splits, 7.3).
+  void prefetch(uint32_t v) const {
+    __builtin_prefetch(&list_[v]);
+    __builtin_prefetch(&count8_[v]);
+  }
 
   void push(uint32_t v, uint32_t slot) {
     List& l = list_[v];
