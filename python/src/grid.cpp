@@ -404,10 +404,6 @@ py::dict gridInfo(const DecodedGrid& grid, int levels) {
   return info;
 }
 
-// A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6),
-// as a region of any grid does.
-const uint8_t kEveryAxis[3] = {16, 16, 16};
-
 py::tuple decodeBox(const py::object& source_object, int levels, const py::object& byte_limit,
                     const py::object& region_object, int threads) {
   const RegionArgument region = parseGridRegion(region_object);
@@ -423,13 +419,8 @@ py::tuple decodeBox(const py::object& source_object, int levels, const py::objec
   info["bytes"] = r.bytes_total;
   info["bytes_read"] = r.bytes_read;
   info["bytes_used"] = py::none();
-  // The metadata 'mrsv decode --region' writes: the origin moved to the first
-  // output sample, on the lattice of every 2^K-th sample inside the box (spec 11.6).
-  uint32_t first[3];
-  const uint32_t step = 1u << levels;
-  for (int a = 0; a < 3; ++a) first[a] = (region.box.lo[a] + step - 1) / step * step;
-  const Metadata output_metadata =
-      reducedResolutionMetadata(regionMetadata(grid.metadata, first), grid.header, kEveryAxis, levels);
+  // The metadata 'mrsv decode --region' writes.
+  const Metadata output_metadata = decodedRegionMetadata(grid, region.box.lo, levels);
   info["spacing"] = parsedNumbers(output_metadata, "spacing", true);
   info["origin"] = parsedNumbers(output_metadata, "origin", true);
   return py::make_tuple(samplesArray(grid), info);
@@ -458,7 +449,6 @@ py::tuple decode(const py::object& source_object, int levels, const py::object& 
   if (!grid.has_samples)
     throw py::value_error("the stream ends before its sample data (a prefix of " +
                           std::to_string(grid.container.chunks.size()) + " chunks)");
-  const GridHeader& h = grid.header;
   py::dict info = gridInfo(grid, levels);
   info["complete"] = grid.container.complete;
   info["bytes"] = source.size;
@@ -469,8 +459,7 @@ py::tuple decode(const py::object& source_object, int levels, const py::object& 
   // spacing and origin describe the array returned: at reduced resolution an
   // output step spans 2^K samples, as in `mrsv decode --levels K`'s GeoTIFF
   // (metadata keeps the stream's own entries).
-  const Metadata output_metadata = reducedResolutionMetadata(
-      grid.metadata, h, h.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels, levels);
+  const Metadata output_metadata = decodedGridMetadata(grid, levels);
   info["spacing"] = parsedNumbers(output_metadata, "spacing", true);
   info["origin"] = parsedNumbers(output_metadata, "origin", true);
   return py::make_tuple(samplesArray(grid), info);

@@ -223,16 +223,17 @@ int main(int argc, char** argv) {
       worstError(field, prog, bound, &prog_ok);
       // Delatin has no border rule (spec 8.6): without it the greedy choice is
       // Delatin's own, and so is the triangle count (untimed).
-      InsertionLimits free_sides = limits;
-      free_sides.border_rule = false;
-      TerrainInserter unbordered(field.size[0], field.size[1]);
-      unbordered.refine(field, 0, free_sides, &error);
-      GridMesh free_mesh;
-      unbordered.mesh(&free_mesh);
       char free_ratio[32] = "n/a";
-      if (k < delatin.size() && delatin[k].ok)
+      if (k < delatin.size() && delatin[k].ok) {
+        InsertionLimits free_sides = limits;
+        free_sides.border_rule = false;
+        TerrainInserter unbordered(field.size[0], field.size[1]);
+        unbordered.refine(field, 0, free_sides, &error);
+        GridMesh free_mesh;
+        unbordered.mesh(&free_mesh);
         std::snprintf(free_ratio, sizeof free_ratio, "%.3f",
                       double(free_mesh.cells.size()) / delatin[k].mesh.cells.size());
+      }
       char peer[256] = "| n/a | | | n/a | | | n/a ";
       if (k < delatin.size() && delatin[k].ok) {
         bool within = false;

@@ -397,11 +397,7 @@ int runDecode(int argc, char** argv) {
       return fail(cmd, input.name() + ": the stream ends before its sample data (a prefix of " +
                            std::to_string(grid.container.chunks.size()) + " chunks)",
                   kExitInvalidData);
-    // A tiled grid reduced by K takes every 2^K-th sample on every axis (spec 11.6).
-    static const uint8_t kEveryAxis[3] = {16, 16, 16};
-    const Metadata metadata = reducedResolutionMetadata(
-        grid.metadata, grid.header,
-        grid.header.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels, options.reduce_levels);
+    const Metadata metadata = decodedGridMetadata(grid, options.reduce_levels);
     if (!encodeGridOutput(out, grid.header, metadata, grid.output_size, std::move(grid.samples),
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);

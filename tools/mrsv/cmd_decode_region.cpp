@@ -39,14 +39,7 @@ int runRegionDecode(const Args& args, const std::string& in, const std::string& 
   } else {
     if (!grid.has_samples)
       return fail(cmd, in + ": the stream ends before the region's sample data", kExitInvalidData);
-    // The output lattice starts at the first multiple of 2^K inside the box
-    // and steps by 2^K on every axis (spec 11.6).
-    uint32_t first[3];
-    const uint32_t step = 1u << levels;
-    for (int a = 0; a < 3; ++a) first[a] = (region.lo[a] + step - 1) / step * step;
-    static const uint8_t kEveryAxis[3] = {16, 16, 16};
-    const Metadata metadata = reducedResolutionMetadata(regionMetadata(grid.metadata, first), grid.header,
-                                                        kEveryAxis, options.reduce_levels);
+    const Metadata metadata = decodedRegionMetadata(grid, region.lo, options.reduce_levels);
     if (!encodeGridOutput(out, grid.header, metadata, grid.output_size, std::move(grid.samples),
                           endian == Endian::kBig, &output, &error))
       return fail(cmd, error, kExitUsage);

@@ -68,5 +68,13 @@ Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& h
 // The metadata of a box of the grid whose first sample is `first`: the origin
 // moved there (spacing 1 when the metadata gives none).
 Metadata regionMetadata(const Metadata& metadata, const uint32_t first[3]);
+// The metadata of the array a whole decode `reduce_levels` levels above the
+// finest returns: reducedResolutionMetadata() with the grid's levels, or for
+// a tiled grid every 2^K-th sample on every axis (spec 11.6).
+Metadata decodedGridMetadata(const DecodedGrid& grid, int reduce_levels);
+// The same for a region decode of the box from `lo` (spec 11.5, 11.6): every
+// 2^K-th sample on every axis, the origin moved to the first multiple of 2^K
+// inside the box.
+Metadata decodedRegionMetadata(const DecodedGrid& grid, const uint32_t lo[3], int reduce_levels);
 
 }  // namespace mrsv

@@ -7,7 +7,7 @@
 // of a whole decode. On Linux the allocation is aligned to 2 MiB and marked
 // MADV_HUGEPAGE (a hint; it takes effect when transparent huge pages are set
 // to "madvise" or "always"), which makes it 64 faults. Elsewhere, and for
-// small arrays, it is an ordinary allocation. Nothing computed depends on it.
+// arrays below 1 MiB, it is an ordinary allocation. Nothing computed depends on it.
 #pragma once
 
 #include <cstddef>
@@ -37,8 +37,8 @@ LargeArray<T> makeLargeArray(uint64_t n) {
   return LargeArray<T>(static_cast<T*>(allocateLarge(static_cast<size_t>(n) * sizeof(T))));
 }
 
-// An allocator for std::vector that takes arrays of 1 MiB or more from
-// allocateLarge(): a decoder's mesh arrays (PT, spec 7), which it reserves
+// An allocator for std::vector through allocateLarge() (large pages for
+// arrays of 1 MiB or more): a decoder's mesh arrays (PT, spec 7), which it reserves
 // once from the sizes its header announces and then fills split by split.
 // With 4 KiB pages the first touch of each page faulted: about 10 % of a
 // PT decode of the CT crop (perf; 2,600 faults per decode).
@@ -50,8 +50,7 @@ struct LargePageAllocator {
   LargePageAllocator(const LargePageAllocator<U>&) {}
   T* allocate(size_t n) {
     if (n > SIZE_MAX / sizeof(T)) throw std::bad_alloc();
-    const size_t bytes = n * sizeof(T);
-    void* p = bytes >= kLargeAllocationBytes ? allocateLarge(bytes) : std::malloc(bytes == 0 ? 1 : bytes);
+    void* p = allocateLarge(n * sizeof(T));
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
@@ -60,7 +59,6 @@ struct LargePageAllocator {
   bool operator==(const LargePageAllocator<U>&) const { return true; }
   template <class U>
   bool operator!=(const LargePageAllocator<U>&) const { return false; }
-  static constexpr size_t kLargeAllocationBytes = size_t{1} << 20;
 };
 
 template <class T>

@@ -471,6 +471,24 @@ Metadata reducedResolutionMetadata(const Metadata& metadata, const GridHeader& h
   return out;
 }
 
+namespace {
+// Levels to reduce by on every axis: the lattice of every 2^K-th sample.
+const uint8_t kEveryAxis[3] = {16, 16, 16};
+}  // namespace
+
+Metadata decodedGridMetadata(const DecodedGrid& grid, int reduce_levels) {
+  return reducedResolutionMetadata(grid.metadata, grid.header,
+                                   grid.header.coding == GridCoding::kTiled ? kEveryAxis : grid.wavelet.levels,
+                                   reduce_levels);
+}
+
+Metadata decodedRegionMetadata(const DecodedGrid& grid, const uint32_t lo[3], int reduce_levels) {
+  uint32_t first[3];
+  const uint32_t step = 1u << reduce_levels;
+  for (int a = 0; a < 3; ++a) first[a] = (lo[a] + step - 1) / step * step;
+  return reducedResolutionMetadata(regionMetadata(grid.metadata, first), grid.header, kEveryAxis, reduce_levels);
+}
+
 Metadata regionMetadata(const Metadata& metadata, const uint32_t first[3]) {
   Metadata out = metadata;
   const std::string* origin_text = metadata.find("origin");

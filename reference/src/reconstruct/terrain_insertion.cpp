@@ -456,7 +456,7 @@ struct TerrainInserter::State {
         dt.insert(p, dt.vertexCount(), hint);  // hint holds p after it
         is_vertex[sample] = 1;
         vertex_sample.push_back(sample);
-          }
+      }
     }
   }
 };
