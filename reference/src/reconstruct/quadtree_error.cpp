@@ -24,6 +24,9 @@ ErrorTest::ErrorTest(const SampleField& field, const ErrorBound& bound)
 // |s - m| <= num / den with m = n / d is |s d - n| <= num d / den; the left
 // side is an integer, so the right side may be floored.
 int64_t ErrorTest::thresholdFor(int64_t d) const {
+  int64_t product;
+  if (!__builtin_mul_overflow(bound_.num, d, &product))  // both >= 0
+    return bound_.den == 1 ? product : product / bound_.den;
   const __int128 t = static_cast<__int128>(bound_.num) * d / bound_.den;
   return t > INT64_MAX ? INT64_MAX : static_cast<int64_t>(t);
 }
@@ -46,15 +49,48 @@ bool ErrorTest::scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold
   const Acc A = u1 * a[1] + u2 * a[2], B = u1 * b[1] + u2 * b[2];
   const int64_t ylo = std::min<int64_t>({0, y1, y2}), yhi = std::max<int64_t>({0, y1, y2});
   const int64_t xlo = std::min<int64_t>({0, x1, x2}), xhi = std::max<int64_t>({0, x1, x2});
-  for (int64_t y = ylo; y <= yhi; ++y) {
-    int64_t lo = xlo, hi = xhi;
-    for (int k = 0; k < 3; ++k) {  // a_k x + r >= 0
-      const int64_t r = b[k] * y + c[k];
-      if (a[k] > 0) lo = std::max(lo, -floorDiv(r, a[k]));
-      else if (a[k] < 0) hi = std::min(hi, floorDiv(r, -a[k]));
-      else if (r < 0) hi = lo - 1;
+  if ((xhi - xlo + 1) * (yhi - ylo + 1) <= 64) {
+    // A small box: every point of it, with the edge functions themselves
+    // (w_0 = a_0 x + b_0 y + d, w_k = a_k x + b_k y), cheaper than the row
+    // bounds' divisions.
+    const int32_t* row = base + ylo * int64_t{width};
+    for (int64_t y = ylo; y <= yhi; ++y, row += width) {
+      const Acc row_term = B * y;
+      for (int64_t x = xlo; x <= xhi; ++x) {
+        if (a[0] * x + b[0] * y + d < 0 || a[1] * x + b[1] * y < 0 || a[2] * x + b[2] * y < 0) continue;
+        const Acc diff = (row[x] - v0) * d - (A * x + row_term);
+        if (diff > threshold || diff < -threshold) return false;
+      }
     }
-    const int32_t* row = base + y * int64_t{width};
+    return true;
+  }
+  // Edge k admits a_k x + r_k(y) >= 0, r_k(y) = b_k y + c_k: x >= -floor(r / a)
+  // when a > 0, x <= floor(r / -a) when a < 0. The floors follow the rows by
+  // quotient and remainder steps, without a division per row.
+  struct Bound {
+    int64_t den, q, rem, dq, drem;
+  } bound[3];
+  int nb = 0;
+  bool lower[3];
+  for (int k = 0; k < 3; ++k) {
+    if (a[k] == 0) continue;  // a horizontal edge: its side is ylo..yhi already
+    Bound& e = bound[nb];
+    lower[nb++] = a[k] > 0;
+    e.den = a[k] > 0 ? a[k] : -a[k];
+    const int64_t r = b[k] * ylo + c[k];
+    e.q = floorDiv(r, e.den), e.rem = r - e.q * e.den;
+    e.dq = floorDiv(b[k], e.den), e.drem = b[k] - e.dq * e.den;
+  }
+  const int32_t* row = base + ylo * int64_t{width};
+  for (int64_t y = ylo; y <= yhi; ++y, row += width) {
+    int64_t lo = xlo, hi = xhi;
+    for (int k = 0; k < nb; ++k) {
+      Bound& e = bound[k];
+      if (lower[k]) lo = std::max(lo, -e.q);
+      else hi = std::min(hi, e.q);
+      e.q += e.dq, e.rem += e.drem;
+      if (e.rem >= e.den) e.rem -= e.den, ++e.q;
+    }
     const Acc row_term = B * y;
     for (int64_t x = lo; x <= hi; ++x) {
       const Acc diff = (row[x] - v0) * d - (A * x + row_term);
@@ -72,6 +108,29 @@ bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
   if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58))
     return scanTriangle<int64_t>(q, d, threshold);
   return scanTriangle<__int128>(q, d, threshold);
+}
+
+bool ErrorTest::pointWithin(const uint32_t p[3][2], uint32_t x, uint32_t y) const {
+  auto orient = [](int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t cx, int64_t cy) {
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+  };
+  const int64_t d = orient(p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1]);
+  const int64_t w0 = orient(x, y, p[1][0], p[1][1], p[2][0], p[2][1]);
+  const int64_t w1 = orient(p[0][0], p[0][1], x, y, p[2][0], p[2][1]);
+  const int64_t w2 = orient(p[0][0], p[0][1], p[1][0], p[1][1], x, y);
+  const int64_t threshold = thresholdFor(d);
+  if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58)) {
+    // As scanTriangle<int64_t>: every term relative to the first vertex's sample.
+    const int64_t v0 = field_.at(p[0][0], p[0][1]);
+    const int64_t diff = (field_.at(x, y) - v0) * d -
+                         ((field_.at(p[1][0], p[1][1]) - v0) * w1 + (field_.at(p[2][0], p[2][1]) - v0) * w2);
+    return diff <= threshold && diff >= -threshold;
+  }
+  const __int128 diff = static_cast<__int128>(field_.at(x, y)) * d -
+                        (static_cast<__int128>(field_.at(p[0][0], p[0][1])) * w0 +
+                         static_cast<__int128>(field_.at(p[1][0], p[1][1])) * w1 +
+                         static_cast<__int128>(field_.at(p[2][0], p[2][1])) * w2);
+  return diff <= threshold && diff >= -threshold;
 }
 
 bool ErrorTest::runWithin(uint64_t first, uint64_t step, uint32_t n) const {

@@ -19,6 +19,11 @@ class ErrorTest {
   // plane through the three vertices' samples.
   bool triangleWithin(const uint32_t p[3][2]) const;
 
+  // Grid point (x, y), inside the closed triangle p[0..2] (counter-clockwise):
+  // true when its sample alone is within the bound of that plane (the test of
+  // triangleWithin for one sample).
+  bool pointWithin(const uint32_t p[3][2], uint32_t x, uint32_t y) const;
+
   // Samples of grid points first + k * step for k = 0..n (step 1: along a row,
   // step = width: along a column): true when each is within the bound of the
   // line through the first and the last.

@@ -255,7 +255,7 @@ bool meshWith(const SampleField& field, const QuadtreeDetails* details, Quadtree
   report->removal_passes = 0;
   if (remove_vertices) {
     quadtree::RemovalReport removal;
-    quadtree::removeVertices(test, out, &removal);
+    quadtree::removeVertices(test, out, 1, &removal);  // spec 9.7: one pass (D86)
     report->vertices_removed = removal.removed;
     report->removal_passes = removal.passes;
   }

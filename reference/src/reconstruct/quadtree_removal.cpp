@@ -16,34 +16,57 @@ constexpr uint32_t kNone = 0xFFFFFFFFu;
 // spec 9.7: a star larger than this is left alone. It bounds the ear search,
 // cubic in the link's size.
 constexpr size_t kMaxLink = 64;
+// Links up to this size are first checked for a triangle that could hold the
+// removed vertex's sample (Remover::coverable); larger ones go straight to
+// the ears (the check is cubic in the size).
+constexpr size_t kMaxCoverCheck = 12;
 
 uint32_t next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 uint32_t prev(uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 
 // The mesh as a corner table (triangle t owns corners 3t..3t+2, counter-
 // clockwise; opposite_[c] is the corner across the edge c faces, kNone on the
-// grid's border), changed in place by each removal.
+// grid's border), changed in place by each removal. The vertices are numbered
+// in (y, x) order and the triangles grouped by their first vertex in that
+// order, so that a sweep in (y, x) order walks memory in order too.
 class Remover {
  public:
   Remover(const ErrorTest& test, GridMesh* mesh) : test_(test), mesh_(mesh) {
+    renumber();
     const size_t t_count = mesh->cells.size();
     vertex_.resize(3 * t_count);
     for (size_t t = 0; t < t_count; ++t)
       for (int k = 0; k < 3; ++k) vertex_[3 * t + k] = mesh->cells[t][k];
     // Opposites: the corner facing a -> b meets the one facing b -> a, found
     // among the half-edges leaving b (grouped by their start, a counting sort).
+    // Each half-edge is stored with its end, so that the search reads one
+    // contiguous run.
     const size_t v_count = mesh->points.size();
-    std::vector<uint32_t> start(v_count + 1, 0), leaving(vertex_.size());
+    std::vector<uint32_t> start(v_count + 1, 0);
+    std::vector<std::pair<uint32_t, uint32_t>> leaving(vertex_.size());  // (end, corner)
     for (uint32_t c = 0; c < vertex_.size(); ++c) ++start[vertex_[next(c)] + 1];
     for (size_t v = 0; v < v_count; ++v) start[v + 1] += start[v];
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t c = 0; c < vertex_.size(); ++c) leaving[fill[vertex_[next(c)]]++] = c;
-    opposite_.assign(vertex_.size(), kNone);
-    for (uint32_t c = 0; c < vertex_.size(); ++c) {
-      const uint32_t a = vertex_[next(c)], b = vertex_[prev(c)];
-      for (uint32_t k = start[b]; k < start[b + 1]; ++k)
-        if (vertex_[prev(leaving[k])] == a) opposite_[c] = leaving[k];
+    for (uint32_t t = 0; 3 * t < vertex_.size(); ++t) {
+      const uint32_t* p = &vertex_[3 * t];
+      leaving[start[p[1]]++] = {p[2], 3 * t};  // corner 3t faces p[1] -> p[2]
+      leaving[start[p[2]]++] = {p[0], 3 * t + 1};
+      leaving[start[p[0]]++] = {p[1], 3 * t + 2};
     }
+    for (size_t v = v_count; v > 0; --v) start[v] = start[v - 1];
+    start[0] = 0;
+    opposite_.assign(vertex_.size(), kNone);
+    for (uint32_t t = 0; 3 * t < vertex_.size(); ++t)
+      for (uint32_t j = 0; j < 3; ++j) {
+        const uint32_t c = 3 * t + j;
+        if (opposite_[c] != kNone) continue;
+        const uint32_t a = vertex_[next(c)], b = vertex_[prev(c)];
+        for (uint32_t k = start[b]; k < start[b + 1]; ++k)
+          if (leaving[k].first == a) {
+            opposite_[c] = leaving[k].second;
+            opposite_[leaving[k].second] = c;
+            break;
+          }
+      }
     corner_of_.assign(mesh->points.size(), kNone);
     for (uint32_t c = 0; c < vertex_.size(); ++c) corner_of_[vertex_[c]] = c;
   }
@@ -67,12 +90,17 @@ class Remover {
     } while (c != c0);
     const size_t n = poly_.size();
     if (n < 3) return false;  // not a closed fan: a caller's mesh that is not a triangulation
-    // The polygon starts at its smallest point in (y, x) order.
-    size_t first = 0;
-    for (size_t i = 1; i < n; ++i)
-      if (before(poly_[i], poly_[first])) first = i;
+    // The polygon starts at its smallest point in (y, x) order: the smallest
+    // number, as the vertices are numbered in that order.
+    const size_t first = static_cast<size_t>(std::min_element(poly_.begin(), poly_.end()) - poly_.begin());
     std::rotate(poly_.begin(), poly_.begin() + static_cast<std::ptrdiff_t>(first), poly_.end());
     std::rotate(star_.begin(), star_.begin() + static_cast<std::ptrdiff_t>(first), star_.end());
+    for (size_t i = 0; i < n; ++i) {
+      x_[i] = point(poly_[i])[0];
+      y_[i] = point(poly_[i])[1];
+    }
+    vx_ = point(v)[0], vy_ = point(v)[1];
+    if (n <= kMaxCoverCheck && !coverable()) return false;
     if (!clipEars()) return false;
     replaceStar(v);
     return true;
@@ -83,6 +111,9 @@ class Remover {
     GridMesh out;
     out.dims = 2;
     std::copy(mesh_->size, mesh_->size + 3, out.size);
+    out.points.reserve(mesh_->points.size());
+    out.values.reserve(mesh_->points.size());
+    out.cells.reserve(vertex_.size() / 3);
     std::vector<uint32_t> index(mesh_->points.size(), kNone);
     for (uint32_t v = 0; v < mesh_->points.size(); ++v) {
       if (!present(v)) continue;
@@ -98,50 +129,111 @@ class Remover {
 
  private:
   const std::array<uint32_t, 3>& point(uint32_t v) const { return mesh_->points[v]; }
-  bool before(uint32_t a, uint32_t b) const {
-    return point(a)[1] != point(b)[1] ? point(a)[1] < point(b)[1] : point(a)[0] < point(b)[0];
+
+  // The vertices in (y, x) order (a sweep of the grid, no sort), the
+  // triangles grouped by their smallest vertex (a counting sort).
+  void renumber() {
+    GridMesh& m = *mesh_;
+    const uint64_t w = m.size[0];
+    std::vector<uint32_t> at(w * m.size[1], kNone), number(m.points.size());
+    for (uint32_t v = 0; v < m.points.size(); ++v) at[m.points[v][1] * w + m.points[v][0]] = v;
+    std::vector<std::array<uint32_t, 3>> points;
+    std::vector<int32_t> values;
+    points.reserve(m.points.size());
+    values.reserve(m.points.size());
+    for (uint32_t v : at)
+      if (v != kNone) {
+        number[v] = static_cast<uint32_t>(points.size());
+        points.push_back(m.points[v]);
+        values.push_back(m.values[v]);
+      }
+    std::vector<uint32_t> start(points.size() + 1, 0);
+    for (auto& cell : m.cells) {
+      for (int k = 0; k < 3; ++k) cell[k] = number[cell[k]];
+      ++start[std::min({cell[0], cell[1], cell[2]}) + 1];
+    }
+    for (size_t v = 0; v < points.size(); ++v) start[v + 1] += start[v];
+    std::vector<std::array<uint32_t, 4>> cells(m.cells.size());
+    for (const auto& cell : m.cells) cells[start[std::min({cell[0], cell[1], cell[2]})]++] = cell;
+    m.points = std::move(points);
+    m.values = std::move(values);
+    m.cells = std::move(cells);
   }
-  int64_t orient(uint32_t a, uint32_t b, uint32_t c) const {
-    const auto &p = point(a), &q = point(b), &r = point(c);
-    return (int64_t{q[0]} - p[0]) * (int64_t{r[1]} - p[1]) - (int64_t{q[1]} - p[1]) * (int64_t{r[0]} - p[0]);
+
+  int64_t orient(size_t a, size_t b, size_t c) const {
+    return (x_[b] - x_[a]) * (y_[c] - y_[a]) - (y_[b] - y_[a]) * (x_[c] - x_[a]);
   }
-  // Triangle (a, b, c) within E (spec 9.4's test), each triple tested once per star.
-  bool within(uint32_t a, uint32_t b, uint32_t c) {
-    const std::array<uint32_t, 3> t = {a, b, c};
-    for (const auto& [seen, ok] : tested_)
-      if (seen == t) return ok;
-    const uint32_t p[3][2] = {{point(a)[0], point(a)[1]}, {point(b)[0], point(b)[1]}, {point(c)[0], point(c)[1]}};
-    const bool ok = test_.triangleWithin(p);
-    tested_.push_back({t, ok});
+  // Does polygon triangle (a, b, c), counter-clockwise, hold v's point (its
+  // sides included)?
+  bool holdsV(size_t a, size_t b, size_t c) const {
+    auto side = [&](size_t p, size_t q) { return (x_[q] - x_[p]) * (vy_ - y_[p]) - (y_[q] - y_[p]) * (vx_ - x_[p]); };
+    return side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0;
+  }
+  void corners(size_t a, size_t b, size_t c, uint32_t p[3][2]) const {
+    const size_t k[3] = {a, b, c};
+    for (int j = 0; j < 3; ++j) p[j][0] = static_cast<uint32_t>(x_[k[j]]), p[j][1] = static_cast<uint32_t>(y_[k[j]]);
+  }
+  // A necessary condition for the removal, cheap beside the ears: the
+  // triangles the ears make cover v's point, so one of them, a counter-
+  // clockwise triangle of polygon points holding it, has v's sample within E.
+  // A vertex without any such triangle stays (as the ears would decide, after
+  // scanning most of its star).
+  bool coverable() const {
+    const size_t n = poly_.size();
+    for (size_t a = 0; a < n; ++a)
+      for (size_t b = a + 1; b < n; ++b)
+        for (size_t c = b + 1; c < n; ++c) {
+          if (orient(a, b, c) <= 0 || !holdsV(a, b, c)) continue;
+          uint32_t p[3][2];
+          corners(a, b, c, p);
+          if (test_.pointWithin(p, static_cast<uint32_t>(vx_), static_cast<uint32_t>(vy_))) return true;
+        }
+    return false;
+  }
+  // Polygon triangle (a, b, c) within E (spec 9.4's test), each triangle
+  // tested once per star. v's own sample, the likeliest to fail, goes first.
+  bool within(size_t a, size_t b, size_t c) {
+    // The key of the triangle whatever its first corner (positions < 64).
+    const size_t lo = std::min({a, b, c});
+    const uint32_t key = lo == a ? (a << 12 | b << 6 | c) : lo == b ? (b << 12 | c << 6 | a) : (c << 12 | a << 6 | b);
+    for (const uint32_t seen : tested_)
+      if ((seen >> 1) == key) return seen & 1;
+    uint32_t p[3][2];
+    corners(a, b, c, p);
+    const bool ok = (!holdsV(a, b, c) || test_.pointWithin(p, static_cast<uint32_t>(vx_), static_cast<uint32_t>(vy_))) &&
+                    test_.triangleWithin(p);
+    tested_.push_back(key << 1 | (ok ? 1u : 0u));
     return ok;
   }
   // Step 3: the ears of the polygon, each time the first one in polygon order
   // that is convex, holds no other polygon point (on its sides neither) and is
-  // within E. False when none is.
+  // within E. False when none is. ring_ holds polygon positions.
   bool clipEars() {
-    ring_ = poly_;
+    const size_t n = poly_.size();
+    ring_.resize(n);
+    for (size_t i = 0; i < n; ++i) ring_[i] = static_cast<uint8_t>(i);
     made_.clear();
     tested_.clear();
     while (ring_.size() > 3) {
       const size_t m = ring_.size();
       size_t ear = m;
       for (size_t i = 0; i < m && ear == m; ++i) {
-        const uint32_t a = ring_[(i + m - 1) % m], b = ring_[i], c = ring_[(i + 1) % m];
+        const size_t a = ring_[(i + m - 1) % m], b = ring_[i], c = ring_[(i + 1) % m];
         if (orient(a, b, c) <= 0) continue;
         bool empty = true;
         for (size_t j = 0; j < m && empty; ++j) {
-          const uint32_t q = ring_[j];
+          const size_t q = ring_[j];
           if (q != a && q != b && q != c && orient(a, b, q) >= 0 && orient(b, c, q) >= 0 && orient(c, a, q) >= 0)
             empty = false;
         }
         if (empty && within(a, b, c)) ear = i;
       }
       if (ear == m) return false;
-      made_.push_back({ring_[(ear + m - 1) % m], ring_[ear], ring_[(ear + 1) % m]});
+      made_.push_back({poly_[ring_[(ear + m - 1) % m]], poly_[ring_[ear]], poly_[ring_[(ear + 1) % m]]});
       ring_.erase(ring_.begin() + static_cast<std::ptrdiff_t>(ear));
     }
     if (orient(ring_[0], ring_[1], ring_[2]) <= 0 || !within(ring_[0], ring_[1], ring_[2])) return false;
-    made_.push_back({ring_[0], ring_[1], ring_[2]});
+    made_.push_back({poly_[ring_[0]], poly_[ring_[1]], poly_[ring_[2]]});
     return true;
   }
   // The made triangles take the first n - 2 of the star's slots; the last two die.
@@ -191,35 +283,42 @@ class Remover {
   const ErrorTest& test_;
   GridMesh* mesh_;
   std::vector<uint32_t> vertex_, opposite_, corner_of_;
-  std::vector<uint32_t> poly_, star_, ring_, outer_;
+  std::vector<uint32_t> poly_, star_, outer_;
+  std::vector<uint8_t> ring_;
+  int64_t x_[kMaxLink + 1], y_[kMaxLink + 1], vx_ = 0, vy_ = 0;  // the polygon's points and v's
   std::vector<std::array<uint32_t, 3>> made_;
-  std::vector<std::pair<std::array<uint32_t, 3>, bool>> tested_;
+  std::vector<uint32_t> tested_;  // triangle key << 1 | within
 };
 
 }  // namespace
 
-void removeVertices(const ErrorTest& test, GridMesh* mesh, RemovalReport* report) {
+void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, RemovalReport* report) {
   *report = RemovalReport{};
   const uint32_t w = mesh->size[0], h = mesh->size[1];
+  Remover remover(test, mesh);  // numbers the vertices in (y, x) order
   // Step 1: the interior vertices, finest first (the lowest set bit of x | y),
-  // then by y, then by x.
-  auto fineness = [&](uint32_t v) {
-    return __builtin_ctz(mesh->points[v][0] | mesh->points[v][1]);
-  };
+  // then by y, then by x: a stable grouping of the numbers by fineness.
   std::vector<uint32_t> order;
-  for (uint32_t v = 0; v < mesh->points.size(); ++v) {
-    const auto& p = mesh->points[v];
-    if (p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h) order.push_back(v);
+  {
+    std::vector<uint32_t> count(34, 0);
+    auto fineness = [&](uint32_t v) {
+      return static_cast<uint32_t>(__builtin_ctz(mesh->points[v][0] | mesh->points[v][1]));
+    };
+    auto inner = [&](uint32_t v) {
+      const auto& p = mesh->points[v];
+      return p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h;
+    };
+    const uint32_t v_count = static_cast<uint32_t>(mesh->points.size());
+    for (uint32_t v = 0; v < v_count; ++v)
+      if (inner(v)) ++count[fineness(v) + 1];
+    for (size_t f = 1; f < count.size(); ++f) count[f] += count[f - 1];
+    order.resize(count.back());
+    for (uint32_t v = 0; v < v_count; ++v)
+      if (inner(v)) order[count[fineness(v)]++] = v;
   }
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    const auto &pa = mesh->points[a], &pb = mesh->points[b];
-    const int fa = fineness(a), fb = fineness(b);
-    if (fa != fb) return fa < fb;
-    return pa[1] != pb[1] ? pa[1] < pb[1] : pa[0] < pb[0];
-  });
-  Remover remover(test, mesh);
-  // Step 5: passes until one removes nothing. A vertex whose star has not
-  // changed since it last stayed would stay again: it is not tried.
+  // Step 5: passes until one removes nothing (or max_passes). A vertex whose
+  // star has not changed since it last stayed would stay again: it is not
+  // tried.
   std::vector<uint8_t> changed(mesh->points.size(), 1);
   uint64_t removed_in_pass = 0;
   do {
@@ -233,7 +332,7 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, RemovalReport* report
       for (uint32_t u : remover.link()) changed[u] = 1;
     }
     report->removed += removed_in_pass;
-  } while (removed_in_pass > 0);
+  } while (removed_in_pass > 0 && report->passes != max_passes);
   remover.compact();
 }
 
@@ -254,7 +353,7 @@ bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, Grid
   }
   const quadtree::ErrorTest test(field, bound);
   quadtree::RemovalReport report;
-  quadtree::removeVertices(test, mesh, &report);
+  quadtree::removeVertices(test, mesh, 0, &report);
   if (removed) *removed = report.removed;
   return true;
 }

@@ -19,6 +19,8 @@ struct RemovalReport {
 // Removes vertices of `mesh` (a 2-D grid mesh covering the whole grid, every
 // triangle counter-clockwise) by the rules of spec 9.7; the grid's border
 // vertices stay. `test` is the max-error test the mesh was made with.
-void removeVertices(const ErrorTest& test, GridMesh* mesh, RemovalReport* report);
+// max_passes > 0 stops after that many passes; 0 goes on until a pass removes
+// none.
+void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, RemovalReport* report);
 
 }  // namespace mrsv::quadtree
