@@ -1,7 +1,8 @@
 // spec 9.7: the vertex-removal pass after the max-error quadtree. Each
 // interior vertex whose star can be re-triangulated with triangles within E
-// leaves the mesh, finest first, pass after pass; the triangles then follow
-// the terrain at any angle instead of the dyadic cells (D83).
+// leaves the mesh, finest first, in one pass (D86; after insertion, 8.8, pass
+// after pass); the triangles then follow the terrain at any angle instead of
+// the dyadic cells (D83).
 #pragma once
 
 #include <cstdint>
