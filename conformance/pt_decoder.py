@@ -27,6 +27,7 @@ CONTENT_HEADERS = (b"GHDR", b"PHDR", b"THDR")
 KNOWN_CRITICAL = (b"GHDR", b"GRAW", b"WHDR", b"GMSK", b"GBND", b"GRES", b"PHDR", b"PBAS", b"PSPL",
                   b"THDR", b"TBAS", b"TSPL", b"MEND")
 MAX_LINK = 1024  # vertices in the link of a split vertex (7.6.1)
+SPLIT_GROUP = 32  # vertices per group flag (7.7.1)
 
 
 class PTError(Exception):
@@ -532,15 +533,26 @@ class PTStream:
             except ValueError:
                 raise PTError(206, q + 4, "TSPL", "first byte not 0")
             n0 = len(self.positions)
-            done, v = 0, 0
+            done, v, previous_group = 0, 0, 0
             while done < split_count:
                 if v == n0:
                     raise SplitInvalid("flags end")
-                context = min(len(self.incident[v]) // 2, 15)
-                if rd.bit(("split_flag", context)) == 1:
-                    self.vertex_split(rd, v)
-                    done += 1
-                v += 1
+                group_end = min(v + SPLIT_GROUP, n0)
+                previous_group = rd.bit(("group_flag", previous_group))
+                if previous_group == 0:
+                    v = group_end
+                    continue
+                split_in_group = False
+                while v < group_end and done < split_count:
+                    if v == group_end - 1 and not split_in_group:
+                        flag = 1  # implied: the group holds a split vertex
+                    else:
+                        flag = rd.bit(("split_flag", min(len(self.incident[v]) // 2, 15)))
+                    if flag == 1:
+                        self.vertex_split(rd, v)
+                        done += 1
+                        split_in_group = True
+                    v += 1
         except StringEnd:
             raise PTError(206, q + 4, "TSPL", "string ends early")
         except SplitInvalid as e:

@@ -5,7 +5,8 @@ Sources. The PT streams with splits in vectors/pt_valid/pt_grid_*.mrsv,
 pt_two_fields.mrsv and pt_no_fields.mrsv were written once by the reference encoder
 (`mrsv tetrahedralize --ascii` of small random uint8 grids, 4x3x3, 6x5x4 and 4x4x3,
 then `mrsv encode`; pt_two_fields adds a non-integer field 'density' to the .vtu,
-pt_no_fields drops the field and takes --bits 8). They are fixed files, not
+pt_no_fields is pt_grid_4x3x3's mesh without its field, at --bits 8). They were
+written again from their decoded meshes when 7.7.1 took group flags (D87). They are fixed files, not
 regenerated; this script checks that its own writer codes each of them again byte
 for byte from the values pt_decoder.py reads (so the suite's writer and the
 reference encoder agree on every range-coded string), and computes their expected
@@ -607,7 +608,10 @@ def build_split_cases(v, src):
     s = ptd.PTStream(join(c[:t + 2]))
     n0 = len(s.positions)
     last = s.splits[-1][0]
-    more = batch0 + [("bit", ("split_flag", min(len(s.incident[x]) // 2, 15)), 0) for x in range(last + 1, n0)]
+    # After the last split: 0 flags to the end of its group, then a 0 group flag per group.
+    group_end = min((last // ptd.SPLIT_GROUP + 1) * ptd.SPLIT_GROUP, n0)
+    more = batch0 + [("bit", ("split_flag", min(len(s.incident[x]) // 2, 15)), 0) for x in range(last + 1, group_end)]
+    more += [("bit", ("group_flag", 1 if x == group_end else 0), 0) for x in range(group_end, n0, ptd.SPLIT_GROUP)]
     ins = c[:t + 1] + [(b"TSPL", set_u32(P, 0, struct.unpack_from("<I", P)[0] + 1)[:4] + Writer().encode(more))]
     w = Writer()
     strings = [w.encode(A.ops[0]), w.encode(more)]
@@ -683,7 +687,8 @@ def build_split_cases(v, src):
                   base_tet_count=len(tets), tet_count=len(tets) + 1, batch_count=1)
     data = H + chunk(b"THDR", header) + chunk(b"TBAS", w.encode(ops))
     q = len(data) + 8
-    data += chunk(b"TSPL", struct.pack("<I", 1) + w.encode([("bit", ("split_flag", 15), 1)])) + MEND
+    split = [("bit", ("group_flag", 0), 1), ("bit", ("split_flag", 15), 1)]
+    data += chunk(b"TSPL", struct.pack("<I", 1) + w.encode(split)) + MEND
     v.invalid("pt_link_too_large", data, 303, "bad_vertex_split", q + 4, "7.6.1",
               "written here: a split of a vertex whose link has 1,025 vertices (a fan of 1,023 tets)")
 

@@ -154,9 +154,9 @@ void runMesh(const std::string& name, bool peer, uint64_t samples) {
   const size_t xz = xzBytes(q);
   const double splits = std::max(1u, st.splits);
   std::printf("size: %zu bytes (%.2f bits/tet, %.2f bits/vertex); per split %.2f bits connectivity "
-              "(%.2f flags + %.2f cut), %.2f geometry; xz -9 of the binary mesh %zu bytes: xz/mrsv %.2f\n",
+              "(%.2f flags in %.1f decisions + %.2f cut), %.2f geometry; xz -9 of the binary mesh %zu bytes: xz/mrsv %.2f\n",
               stream.size(), 8.0 * stream.size() / mesh.tets.size(), 8.0 * stream.size() / mesh.positions.size(),
-              (st.flag_bits + st.cut_bits) / splits, st.flag_bits / splits, st.cut_bits / splits,
+              (st.flag_bits + st.cut_bits) / splits, st.flag_bits / splits, st.flag_decisions / splits, st.cut_bits / splits,
               st.value_bits / splits, xz, xz ? double(xz) / stream.size() : 0.0);
 
   // decode

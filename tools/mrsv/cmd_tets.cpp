@@ -171,7 +171,7 @@ int runTetEncode(int argc, char** argv) {
                  "mrsv encode: %s: %zu bytes; %zu vertices, %zu tets, %zu fields; base %llu vertices, %llu tets "
                  "(%llu bytes); %u splits in %u batches (%llu bytes, %.2f bits/split); simplify %.0f ms, "
                  "encode %.0f ms\n"
-                 "mrsv encode: per split: %.2f bits of connectivity (%.2f flags, %.2f cut), %.2f of geometry; "
+                 "mrsv encode: per split: %.2f bits of connectivity (%.2f flags in %.1f decisions, %.2f cut), %.2f of geometry; "
                  "%.2f bits per tet\n"
                  "mrsv encode: collapses evaded: %llu boundary table, %llu link condition, %llu inversion, "
                  "%llu degenerate, %llu min dihedral, %llu boundary self-intersection\n",
@@ -181,7 +181,8 @@ int runTetEncode(int argc, char** argv) {
                  stats.splits, stats.batches, static_cast<unsigned long long>(stats.split_bytes),
                  stats.splits ? 8.0 * stats.split_bytes / stats.splits : 0.0, ms(start, simplified),
                  ms(simplified, encoded), (stats.flag_bits + stats.cut_bits) / std::max(1u, stats.splits),
-                 stats.flag_bits / std::max(1u, stats.splits), stats.cut_bits / std::max(1u, stats.splits),
+                 stats.flag_bits / std::max(1u, stats.splits),
+                 double(stats.flag_decisions) / std::max(1u, stats.splits), stats.cut_bits / std::max(1u, stats.splits),
                  stats.value_bits / std::max(1u, stats.splits), 8.0 * stream.size() / std::max<size_t>(1, mesh.tets.size()),
                  static_cast<unsigned long long>(s.evaded_boundary_table),
                  static_cast<unsigned long long>(s.evaded_link), static_cast<unsigned long long>(s.evaded_inversion),

@@ -21,6 +21,9 @@ namespace mrsv::pt {
 
 constexpr int kDegreeContexts = 16;
 constexpr int kFlagContexts = 16;
+// spec 7.7.1: the vertices of a batch go in groups of this many, each with a
+// group flag before its vertices' flags (D87).
+constexpr uint32_t kSplitGroup = 32;
 
 // spec 7.5.1 a signed value below 2^30 in magnitude: its bit length n (0 to
 // 30) as one symbol, or 15 and a second symbol n - 15; then n - 1 bits below
@@ -37,6 +40,7 @@ struct PtContexts {
   BitModel base_new_vertex[4];
   pm::IntegerModels base_back_reference;
 
+  BitModel group_flag[2];              // by the batch's previous group flag
   BitModel split_flag[kFlagContexts];  // by min(tets of the vertex / 2, 15)
   SymbolModel cut_start;               // c_0 of an interior vertex's cut
   SymbolModel cut_first[kDegreeContexts];

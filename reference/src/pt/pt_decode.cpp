@@ -151,17 +151,34 @@ Error PtSteps::batch(const ChunkView& chunk) {
                  "batch " + std::to_string(out_->batches_decoded) + ", split " + std::to_string(done) +
                      " (vertex " + std::to_string(v) + "): " + problem};
   };
-  // The flags up to the next 1 are one run of the range decoder (7.7.1:
-  // the context is read as each flag is decoded; the run stops before the
-  // split that changes the counts).
+  // 7.7.1: a group flag per kSplitGroup vertices; in a group whose flag is
+  // 1, the flags up to the next 1 are one run of the range decoder (the
+  // context is read as each flag is decoded; the run stops before the split
+  // that changes the counts), and the group's last flag is implied when no
+  // flag of the group was 1 before it.
   const IncidenceLists& incident = s.mesh.incident;
   static_assert(2 * (pt::kFlagContexts - 1) < 255, "the contexts are told apart below 255 tets");
   auto context = [&](uint32_t u) { return std::min<uint32_t>(incident.sizeUpTo255(u) / 2, pt::kFlagContexts - 1); };
-  for (; done < split_count; ++v) {
-    v = rc.firstOne(ctx.split_flag, v, vertices, context);
+  int previous_group = 0;
+  while (done < split_count) {
     if (v == vertices) return fail("the flags end before split_count splits");
-    if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
-    ++done;
+    const uint32_t group_end = std::min(v + pt::kSplitGroup, vertices);
+    previous_group = rc.bit(&ctx.group_flag[previous_group]);
+    if (previous_group == 0) {
+      v = group_end;
+      continue;
+    }
+    // Until the group's first split its last flag is implied, so the run ends one before it.
+    uint32_t run_end = group_end - 1;
+    while (done < split_count) {
+      v = rc.firstOne(ctx.split_flag, v, run_end, context);
+      if (v == run_end && run_end == group_end) break;  // no more splits in the group
+      if (std::string problem = decodeSplit(coder, ctx, s, v); !problem.empty()) return fail(problem);
+      ++done;
+      ++v;
+      run_end = group_end;
+    }
+    v = group_end;
   }
   if (Error e = checkPayloadEnd(rc, chunk.chunk_length - 4, at + 4, "TSPL"); !e.ok()) return e;
   ++out_->batches_decoded;

@@ -301,13 +301,37 @@ Error writePtStream(const QuantizedTets& mesh, const std::vector<std::vector<PtC
     RangeEncoder rc(&payload);
     CountingCoder coder{&rc};
     size_t next = 0;
+    // 7.7.1: a group flag at each group's first vertex; in a group whose flag
+    // is 1, a flag per vertex, the last implied while none was 1 before it.
+    const uint32_t vertices_at_start = s.mesh.vertexCount();
+    uint32_t group_end = 0;
+    int previous_group = 0;
+    bool split_in_group = false;
     for (uint32_t v = 0; next < batch.size(); ++v) {
       const CollapseRecord& r = batch[next];
-      const int flag = number[r.vs] == v ? 1 : 0;
       double before = coder.bits;
-      coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], flag);
+      if (v == group_end) {
+        group_end = std::min(v + pt::kSplitGroup, vertices_at_start);
+        const int has_split = number[r.vs] < group_end ? 1 : 0;
+        coder.bit(&ctx.group_flag[previous_group], has_split);
+        if (stats) ++stats->flag_decisions;
+        previous_group = has_split;
+        split_in_group = false;
+      }
+      if (stats) stats->flag_bits += coder.bits - before;
+      if (previous_group == 0) {
+        v = group_end - 1;
+        continue;
+      }
+      const int flag = number[r.vs] == v ? 1 : 0;
+      before = coder.bits;
+      if (v + 1 < group_end || split_in_group) {
+        coder.bit(&ctx.split_flag[pt::flagContext(s.mesh, v)], flag);
+        if (stats) ++stats->flag_decisions;
+      }
       if (stats) stats->flag_bits += coder.bits - before;
       if (!flag) continue;
+      split_in_group = true;
       const std::string where = "batch " + std::to_string(b) + ", the collapse of " + std::to_string(r.vt) +
                                 " into " + std::to_string(r.vs);
       std::vector<std::array<uint32_t, 2>> edges = r.cut_edges;

@@ -41,6 +41,8 @@ struct PtStreamStats {
   // Estimated bits of the splits by what they code: the split flags and the
   // cuts are the connectivity, vt's position and field values the geometry.
   double flag_bits = 0, cut_bits = 0, value_bits = 0;
+  // Group and split flags coded (7.7.1): the decoder's decisions before its splits.
+  uint64_t flag_decisions = 0;
 };
 
 // Writes the PT stream of `mesh` simplified by `batches` (batches[0] is

@@ -65,9 +65,9 @@ class IncidenceLists {
 
   uint32_t size(uint32_t v) const { return list_[v].size; }
   // min(size(v), 255), from a byte per vertex: the flag loop of 7.7.1 reads
-  // one per vertex up to each batch's last split, and through the 16-byte
-  // records it streamed 223 MB per decode of the LOX post (130 flags per
-  // split, 107,167 splits).
+  // one per vertex of each flagged group, and through the 16-byte records it
+  // streamed 223 MB per decode of the LOX post (when every vertex up to the
+  // last split had a flag: 130 per split, 107,167 splits).
   uint32_t sizeUpTo255(uint32_t v) const { return count8_[v]; }
   bool empty(uint32_t v) const { return list_[v].size == 0; }
   View of(uint32_t v) const { return View{pool_.data() + list_[v].offset, list_[v].size}; }
