@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
   }
   struct stat st;
   const bool have_peers = stat((peers + "/node_modules/delatin").c_str(), &st) == 0;
+  // terrain_peers.mjs loads the peers through createRequire, which takes only an absolute path.
+  if (have_peers) peers = std::filesystem::absolute(peers).string();
   if (!have_peers)
     std::fprintf(stderr, "terrain_mesh_bench: no %s/node_modules/delatin: run tools/bench/setup_peers.sh (peers skipped)\n",
                  peers.c_str());
