@@ -29,6 +29,9 @@ class ErrorTest {
   // line through the first and the last.
   bool runWithin(uint64_t first, uint64_t step, uint32_t n) const;
 
+  const SampleField& field() const { return field_; }
+  const ErrorBound& bound() const { return bound_; }
+
  private:
   template <class Acc>
   bool scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold) const;

@@ -255,7 +255,7 @@ bool meshWith(const SampleField& field, const QuadtreeDetails* details, Quadtree
   report->removal_passes = 0;
   if (remove_vertices) {
     quadtree::RemovalReport removal;
-    quadtree::removeVertices(test, out, 1, &removal);  // spec 9.7: one pass (D86)
+    quadtree::removeVertices(test, out, quadtree::kAfterQuadtree, &removal);  // spec 9.7 (D86, D88)
     report->vertices_removed = removal.removed;
     report->removal_passes = removal.passes;
   }

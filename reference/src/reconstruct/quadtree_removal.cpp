@@ -13,60 +13,54 @@ namespace mrsv::quadtree {
 namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
-// spec 9.7: a star larger than this is left alone. It bounds the ear search,
-// cubic in the link's size.
-constexpr size_t kMaxLink = 64;
+// spec 8.8: a star larger than this is left alone. It bounds the ear search,
+// cubic in the link's size. (The quadtree's pass, 9.7, stops at 6: D88.)
+constexpr size_t kMaxLink = kAfterInsertion.max_link;
 // Links up to this size are first checked for a triangle that could hold the
 // removed vertex's sample (Remover::coverable); larger ones go straight to
 // the ears (the check is cubic in the size).
 constexpr size_t kMaxCoverCheck = 12;
+
+// spec 9.7: grid point (x, y), inside the grid, bends by more than E along
+// both axes: its sample is further than E from the sum of its neighbours'
+// minus itself, |2 s(x, y) - s(x-1, y) - s(x+1, y)| > E, and so across y.
+// Such a point is a peak, a pit or a saddle of the grid at the scale of one
+// sample, which the ears cannot cut off at that E on most terrains (D88);
+// it is not tried.
+bool bent(const ErrorTest& test, uint32_t x, uint32_t y) {
+  const SampleField& f = test.field();
+  const int64_t s2 = 2 * int64_t{f.at(x, y)};
+  const int64_t along_x = s2 - f.at(x - 1, y) - f.at(x + 1, y), along_y = s2 - f.at(x, y - 1) - f.at(x, y + 1);
+  const __int128 least = std::min(along_x < 0 ? -along_x : along_x, along_y < 0 ? -along_y : along_y);
+  return least * test.bound().den > test.bound().num;
+}
 
 uint32_t next(uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 uint32_t prev(uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 
 // The mesh as a corner table (triangle t owns corners 3t..3t+2, counter-
 // clockwise; opposite_[c] is the corner across the edge c faces, kNone on the
-// grid's border), changed in place by each removal. The vertices are numbered
-// in (y, x) order and the triangles grouped by their first vertex in that
-// order, so that a sweep in (y, x) order walks memory in order too.
+// grid's border), changed in place by each removal. The vertices keep the
+// mesh's numbers and the triangles its order (a quadtree's, leaf by leaf:
+// close triangles close in memory), so that setting up costs a copy and one
+// look-up per edge.
 class Remover {
  public:
-  Remover(const ErrorTest& test, GridMesh* mesh) : test_(test), mesh_(mesh) {
-    renumber();
+  Remover(const ErrorTest& test, GridMesh* mesh, size_t max_link)
+      : test_(test), mesh_(mesh), max_link_(std::min(max_link, kMaxLink)) {
     const size_t t_count = mesh->cells.size();
     vertex_.resize(3 * t_count);
     for (size_t t = 0; t < t_count; ++t)
       for (int k = 0; k < 3; ++k) vertex_[3 * t + k] = mesh->cells[t][k];
-    // Opposites: the corner facing a -> b meets the one facing b -> a, found
-    // among the half-edges leaving b (grouped by their start, a counting sort).
-    // Each half-edge is stored with its end, so that the search reads one
-    // contiguous run.
-    const size_t v_count = mesh->points.size();
-    std::vector<uint32_t> start(v_count + 1, 0);
-    std::vector<std::pair<uint32_t, uint32_t>> leaving(vertex_.size());  // (end, corner)
-    for (uint32_t c = 0; c < vertex_.size(); ++c) ++start[vertex_[next(c)] + 1];
-    for (size_t v = 0; v < v_count; ++v) start[v + 1] += start[v];
-    for (uint32_t t = 0; 3 * t < vertex_.size(); ++t) {
-      const uint32_t* p = &vertex_[3 * t];
-      leaving[start[p[1]]++] = {p[2], 3 * t};  // corner 3t faces p[1] -> p[2]
-      leaving[start[p[2]]++] = {p[0], 3 * t + 1};
-      leaving[start[p[0]]++] = {p[1], 3 * t + 2};
-    }
-    for (size_t v = v_count; v > 0; --v) start[v] = start[v - 1];
-    start[0] = 0;
     opposite_.assign(vertex_.size(), kNone);
-    for (uint32_t t = 0; 3 * t < vertex_.size(); ++t)
-      for (uint32_t j = 0; j < 3; ++j) {
-        const uint32_t c = 3 * t + j;
-        if (opposite_[c] != kNone) continue;
-        const uint32_t a = vertex_[next(c)], b = vertex_[prev(c)];
-        for (uint32_t k = start[b]; k < start[b + 1]; ++k)
-          if (leaving[k].first == a) {
-            opposite_[c] = leaving[k].second;
-            opposite_[leaving[k].second] = c;
-            break;
-          }
-      }
+    // An edge between grid points is known by its midpoint, (x0 + x1, y0 + y1)
+    // on the half-grid: two edges of a triangulation with one midpoint would
+    // cross there. The first corner facing an edge waits at its midpoint for
+    // the second. For a sparse mesh on a large grid (more half-grid points
+    // than 16 per triangle) the half-edges are grouped by their start instead.
+    const uint64_t hw = 2 * uint64_t{mesh->size[0]} - 1, hh = 2 * uint64_t{mesh->size[1]} - 1;
+    if (hw * hh <= 16 * uint64_t{t_count} + 64) matchByMidpoint(hw * hh, hw);
+    else matchByStart();
     corner_of_.assign(mesh->points.size(), kNone);
     for (uint32_t c = 0; c < vertex_.size(); ++c) corner_of_[vertex_[c]] = c;
   }
@@ -85,14 +79,17 @@ class Remover {
       poly_.push_back(vertex_[next(c)]);
       star_.push_back(c);
       const uint32_t across = opposite_[next(c)];  // the triangle across v -> b
-      if (across == kNone || poly_.size() > kMaxLink) return false;
+      if (across == kNone || poly_.size() > max_link_) return false;
       c = next(across);
     } while (c != c0);
     const size_t n = poly_.size();
     if (n < 3) return false;  // not a closed fan: a caller's mesh that is not a triangulation
-    // The polygon starts at its smallest point in (y, x) order: the smallest
-    // number, as the vertices are numbered in that order.
-    const size_t first = static_cast<size_t>(std::min_element(poly_.begin(), poly_.end()) - poly_.begin());
+    // The polygon starts at its smallest point in (y, x) order.
+    size_t first = 0;
+    for (size_t i = 1; i < n; ++i) {
+      const auto &p = point(poly_[i]), &q = point(poly_[first]);
+      if (p[1] < q[1] || (p[1] == q[1] && p[0] < q[0])) first = i;
+    }
     std::rotate(poly_.begin(), poly_.begin() + static_cast<std::ptrdiff_t>(first), poly_.end());
     std::rotate(star_.begin(), star_.begin() + static_cast<std::ptrdiff_t>(first), star_.end());
     for (size_t i = 0; i < n; ++i) {
@@ -107,57 +104,72 @@ class Remover {
   }
 
   // The mesh without the removed vertices and the dead triangles.
+  // In place: the arrays only shrink, and corner_of_, no longer needed,
+  // becomes the vertices' new numbers.
   void compact() {
-    GridMesh out;
-    out.dims = 2;
-    std::copy(mesh_->size, mesh_->size + 3, out.size);
-    out.points.reserve(mesh_->points.size());
-    out.values.reserve(mesh_->points.size());
-    out.cells.reserve(vertex_.size() / 3);
-    std::vector<uint32_t> index(mesh_->points.size(), kNone);
-    for (uint32_t v = 0; v < mesh_->points.size(); ++v) {
+    GridMesh& m = *mesh_;
+    uint32_t kept = 0;
+    for (uint32_t v = 0; v < m.points.size(); ++v) {
       if (!present(v)) continue;
-      index[v] = static_cast<uint32_t>(out.points.size());
-      out.points.push_back(mesh_->points[v]);
-      out.values.push_back(mesh_->values[v]);
+      corner_of_[v] = kept;
+      m.points[kept] = m.points[v];
+      m.values[kept++] = m.values[v];
     }
+    m.points.resize(kept);
+    m.values.resize(kept);
+    size_t t_kept = 0;
     for (uint32_t t = 0; 3 * t < vertex_.size(); ++t)
       if (vertex_[3 * t] != kNone)
-        out.cells.push_back({index[vertex_[3 * t]], index[vertex_[3 * t + 1]], index[vertex_[3 * t + 2]], 0});
-    *mesh_ = std::move(out);
+        m.cells[t_kept++] = {corner_of_[vertex_[3 * t]], corner_of_[vertex_[3 * t + 1]], corner_of_[vertex_[3 * t + 2]], 0};
+    m.cells.resize(t_kept);
   }
 
  private:
   const std::array<uint32_t, 3>& point(uint32_t v) const { return mesh_->points[v]; }
 
-  // The vertices in (y, x) order (a sweep of the grid, no sort), the
-  // triangles grouped by their smallest vertex (a counting sort).
-  void renumber() {
-    GridMesh& m = *mesh_;
-    const uint64_t w = m.size[0];
-    std::vector<uint32_t> at(w * m.size[1], kNone), number(m.points.size());
-    for (uint32_t v = 0; v < m.points.size(); ++v) at[m.points[v][1] * w + m.points[v][0]] = v;
-    std::vector<std::array<uint32_t, 3>> points;
-    std::vector<int32_t> values;
-    points.reserve(m.points.size());
-    values.reserve(m.points.size());
-    for (uint32_t v : at)
-      if (v != kNone) {
-        number[v] = static_cast<uint32_t>(points.size());
-        points.push_back(m.points[v]);
-        values.push_back(m.values[v]);
+  void matchByMidpoint(uint64_t size, uint64_t hw) {
+    std::vector<uint32_t> waiting(size, kNone);
+    const auto& pts = mesh_->points;
+    for (uint32_t t = 0; 3 * t < vertex_.size(); ++t) {
+      const uint32_t* v = &vertex_[3 * t];
+      const auto &p0 = pts[v[0]], &p1 = pts[v[1]], &p2 = pts[v[2]];
+      // corner 3t + k faces the edge between the other two
+      const uint64_t key[3] = {p1[0] + p2[0] + (p1[1] + p2[1]) * hw, p2[0] + p0[0] + (p2[1] + p0[1]) * hw,
+                               p0[0] + p1[0] + (p0[1] + p1[1]) * hw};
+      for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t& w = waiting[key[k]];
+        if (w == kNone) {
+          w = 3 * t + k;
+        } else {
+          opposite_[3 * t + k] = w;
+          opposite_[w] = 3 * t + k;
+        }
       }
-    std::vector<uint32_t> start(points.size() + 1, 0);
-    for (auto& cell : m.cells) {
-      for (int k = 0; k < 3; ++k) cell[k] = number[cell[k]];
-      ++start[std::min({cell[0], cell[1], cell[2]}) + 1];
     }
-    for (size_t v = 0; v < points.size(); ++v) start[v + 1] += start[v];
-    std::vector<std::array<uint32_t, 4>> cells(m.cells.size());
-    for (const auto& cell : m.cells) cells[start[std::min({cell[0], cell[1], cell[2]})]++] = cell;
-    m.points = std::move(points);
-    m.values = std::move(values);
-    m.cells = std::move(cells);
+  }
+  // The corner facing a -> b meets the one facing b -> a. The half-edges that
+  // go up in number (a < b) are grouped by their start (a counting sort),
+  // each stored with its end; every half-edge going down finds its twin
+  // among those leaving its end.
+  void matchByStart() {
+    std::vector<uint32_t> start(mesh_->points.size() + 2, 0);
+    for (uint32_t c = 0; c < vertex_.size(); ++c)
+      if (vertex_[next(c)] < vertex_[prev(c)]) ++start[vertex_[next(c)] + 2];
+    for (size_t v = 2; v < start.size(); ++v) start[v] += start[v - 1];
+    std::vector<std::pair<uint32_t, uint32_t>> up(start.back());  // (end, corner)
+    for (uint32_t c = 0; c < vertex_.size(); ++c)
+      if (vertex_[next(c)] < vertex_[prev(c)]) up[start[vertex_[next(c)] + 1]++] = {vertex_[prev(c)], c};
+    // Now start[a] .. start[a + 1] are the half-edges going up from a.
+    for (uint32_t c = 0; c < vertex_.size(); ++c) {
+      const uint32_t a = vertex_[next(c)], b = vertex_[prev(c)];
+      if (a < b) continue;
+      for (uint32_t k = start[b]; k < start[b + 1]; ++k)
+        if (up[k].first == a) {
+          opposite_[c] = up[k].second;
+          opposite_[up[k].second] = c;
+          break;
+        }
+    }
   }
 
   int64_t orient(size_t a, size_t b, size_t c) const {
@@ -282,6 +294,7 @@ class Remover {
 
   const ErrorTest& test_;
   GridMesh* mesh_;
+  size_t max_link_;
   std::vector<uint32_t> vertex_, opposite_, corner_of_;
   std::vector<uint32_t> poly_, star_, outer_;
   std::vector<uint8_t> ring_;
@@ -292,29 +305,30 @@ class Remover {
 
 }  // namespace
 
-void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, RemovalReport* report) {
+void removeVertices(const ErrorTest& test, GridMesh* mesh, const RemovalRules& rules, RemovalReport* report) {
   *report = RemovalReport{};
   const uint32_t w = mesh->size[0], h = mesh->size[1];
-  Remover remover(test, mesh);  // numbers the vertices in (y, x) order
+  Remover remover(test, mesh, rules.max_link);
   // Step 1: the interior vertices, finest first (the lowest set bit of x | y),
-  // then by y, then by x: a stable grouping of the numbers by fineness.
+  // then by y, then by x: a sweep of the grid, grouped by fineness (a stable
+  // counting sort).
   std::vector<uint32_t> order;
   {
+    std::vector<uint32_t> at(uint64_t{w} * h, kNone);
+    for (uint32_t v = 0; v < mesh->points.size(); ++v) {
+      const auto& p = mesh->points[v];
+      if (p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h) at[uint64_t{p[1]} * w + p[0]] = v;
+    }
     std::vector<uint32_t> count(34, 0);
     auto fineness = [&](uint32_t v) {
       return static_cast<uint32_t>(__builtin_ctz(mesh->points[v][0] | mesh->points[v][1]));
     };
-    auto inner = [&](uint32_t v) {
-      const auto& p = mesh->points[v];
-      return p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h;
-    };
-    const uint32_t v_count = static_cast<uint32_t>(mesh->points.size());
-    for (uint32_t v = 0; v < v_count; ++v)
-      if (inner(v)) ++count[fineness(v) + 1];
+    for (uint32_t v : at)
+      if (v != kNone) ++count[fineness(v) + 1];
     for (size_t f = 1; f < count.size(); ++f) count[f] += count[f - 1];
     order.resize(count.back());
-    for (uint32_t v = 0; v < v_count; ++v)
-      if (inner(v)) order[count[fineness(v)]++] = v;
+    for (uint32_t v : at)
+      if (v != kNone) order[count[fineness(v)]++] = v;
   }
   // Step 5: passes until one removes nothing (or max_passes). A vertex whose
   // star has not changed since it last stayed would stay again: it is not
@@ -327,12 +341,13 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, 
     for (uint32_t v : order) {
       if (!remover.present(v) || !changed[v]) continue;
       changed[v] = 0;
+      if (rules.bent_stay && bent(test, mesh->points[v][0], mesh->points[v][1])) continue;
       if (!remover.tryRemove(v)) continue;
       ++removed_in_pass;
       for (uint32_t u : remover.link()) changed[u] = 1;
     }
     report->removed += removed_in_pass;
-  } while (removed_in_pass > 0 && report->passes != max_passes);
+  } while (removed_in_pass > 0 && report->passes != rules.max_passes);
   remover.compact();
 }
 
@@ -353,7 +368,7 @@ bool removeInnerVertices(const SampleField& field, const ErrorBound& bound, Grid
   }
   const quadtree::ErrorTest test(field, bound);
   quadtree::RemovalReport report;
-  quadtree::removeVertices(test, mesh, 0, &report);
+  quadtree::removeVertices(test, mesh, quadtree::kAfterInsertion, &report);
   if (removed) *removed = report.removed;
   return true;
 }
