@@ -260,13 +260,23 @@ def mesh(field, bound, tile_borders):
     return tris
 
 
-MAX_LINK = 64  # 9.7: a vertex whose link polygon has more points stays
+MAX_LINK = 64  # 8.8: a vertex whose link polygon has more points stays
+QUADTREE_MAX_LINK = 6  # 9.7: the quadtree's pass (D88)
 
 
-def remove_vertices(field, bound, tris, passes=None):
+def bent(field, bound, x, y):
+    """9.7: the sample at inner point (x, y) bends by more than E along both axes."""
+    s2 = 2 * field.s(x, y)
+    along_x = abs(s2 - field.s(x - 1, y) - field.s(x + 1, y))
+    along_y = abs(s2 - field.s(x, y - 1) - field.s(x, y + 1))
+    return min(along_x, along_y) > bound
+
+
+def remove_vertices(field, bound, tris, passes=None, max_link=MAX_LINK, bent_stay=False):
     """9.7: every inner vertex whose link polygon clips into ears within E leaves.
 
-    passes=1: the quadtree's one pass (9.7); None: passes until one removes none (8.8)."""
+    passes=1, max_link=6, bent_stay=True: the quadtree's one pass (9.7); the defaults: passes
+    until one removes none, links of up to 64 points (8.8)."""
     W, H = field.W, field.H
     cache = {}
     star = {}
@@ -287,7 +297,7 @@ def remove_vertices(field, bound, tris, passes=None):
         P = [start]
         while link[P[-1]] != start:
             P.append(link[P[-1]])
-        if len(P) > MAX_LINK:  # 9.7: a larger star stays
+        if len(P) > max_link:  # 9.7, 8.8: a larger star stays
             return None
         T = []
         while len(P) > 3:
@@ -317,6 +327,8 @@ def remove_vertices(field, bound, tris, passes=None):
         done += 1
         for v in order:
             if not star.get(v):
+                continue
+            if bent_stay and bent(field, bound, *v):  # 9.7: a bent grid point stays
                 continue
             T = clip(v)
             if T is None:
@@ -371,7 +383,7 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, border=True, levels=
 
     def made(t):  # 9.4 (and 9.5), then 9.7 when asked
         tris = mesh(field, t, tiles)
-        return remove_vertices(field, t, tris, passes=1) if remove else tris
+        return remove_vertices(field, t, tris, passes=1, max_link=QUADTREE_MAX_LINK, bent_stay=True) if remove else tris
 
     if triangles:
         lo, hi = 0, 8 * (max(field.v) - min(field.v))

@@ -214,15 +214,17 @@ def build9(data_dir, mrsv):
                 [["--max-error", "0"], ["--max-error", "3"]]))
     # 9.7's bound on a link: a flat field with a rough left column; at E = 1 the
     # border rule puts most of the column's points in the mesh, and after the
-    # first removals a vertex next to it has a link of more than 64 points.
+    # first removals a vertex next to it has a link of more than 6 points (of
+    # more than 64 with 8.8's bound, D83's cut of this vector).
     edge = [0] * (100 * 100)
     for y in range(100):
         edge[100 * y] = (31 * y * y + 17 * y) % 13 - 6
     out.append(("qt_flat100_rough_edge_lossless",
                 enc(mrsv, struct.pack("<%dh" % len(edge), *edge), (100, 100), ["--lossless"]),
                 "lossless 100x100 int16, synthetic: 0 everywhere but x = 0, where v(0, y) = (31 y^2 + 17 y) mod 13 "
-                "- 6; with --remove-vertices at E = 1 a link reaches more than 64 points (9.7), which changes the "
-                "mesh (without the bound: 124 vertices, 123 triangles)",
+                "- 6; with --remove-vertices at E = 1 links reach more than the quadtree's 6 points (9.7), which "
+                "changes the mesh (199 vertices, 273 triangles; with 8.8's bound of 64 points and bent points "
+                "tried: 127 and 129; without a bound: 124 and 123)",
                 [["--max-error", "1"], ["--max-error", "1", "--remove-vertices"],
                  ["--max-error", "1", "--no-border-rule", "--remove-vertices"]]))
     floats = struct.pack("<%df" % (33 * 33), *struct.unpack("<%dh" % (33 * 33), sh33))
