@@ -263,10 +263,12 @@ def mesh(field, bound, tile_borders):
 MAX_LINK = 64  # 9.7: a vertex whose link polygon has more points stays
 
 
-def remove_vertices(field, bound, tris, passes=None):
+def remove_vertices(field, bound, tris, passes=None, border_zone=False):
     """9.7: every inner vertex whose link polygon clips into ears within E leaves.
 
-    passes=1: the quadtree's one pass (9.7); None: passes until one removes none (8.8)."""
+    passes=1: the quadtree's one pass (9.7); None: passes until one removes none (8.8).
+    border_zone: only the inner vertices of the triangles with a vertex on the grid's
+    border, as the mesh is on entry (8.8's border cleanup, with passes=1)."""
     W, H = field.W, field.H
     cache = {}
     star = {}
@@ -309,8 +311,14 @@ def remove_vertices(field, bound, tris, passes=None):
             return T + [tuple(P)]
         return None
 
-    order = sorted((p for p in star if 0 < p[0] < W - 1 and 0 < p[1] < H - 1),
-                   key=lambda p: (fineness(p), p[1], p[0]))
+    def inner(p):
+        return 0 < p[0] < W - 1 and 0 < p[1] < H - 1
+
+    candidates = [p for p in star if inner(p)]
+    if border_zone:
+        zone = {p for t in tris if not all(inner(q) for q in t) for p in t if inner(p)}
+        candidates = [p for p in candidates if p in zone]
+    order = sorted(candidates, key=lambda p: (fineness(p), p[1], p[0]))
     done = 0
     while True:
         removed = 0

@@ -135,8 +135,18 @@ class Remover {
   void renumber() {
     GridMesh& m = *mesh_;
     const uint64_t w = m.size[0];
-    std::vector<uint32_t> at(w * m.size[1], kNone), number(m.points.size());
-    for (uint32_t v = 0; v < m.points.size(); ++v) at[m.points[v][1] * w + m.points[v][0]] = v;
+    std::vector<uint32_t> at, number(m.points.size());
+    auto key = [&](uint32_t v) { return uint64_t{m.points[v][1]} * w + m.points[v][0]; };
+    if (m.points.size() * uint64_t{16} < w * m.size[1]) {
+      // Few points for the grid (the border cleanup's sub-mesh, 8.8): sorted,
+      // not swept, so that memory follows the mesh rather than the grid.
+      at.resize(m.points.size());
+      for (uint32_t v = 0; v < m.points.size(); ++v) at[v] = v;
+      std::sort(at.begin(), at.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    } else {
+      at.assign(w * m.size[1], kNone);
+      for (uint32_t v = 0; v < m.points.size(); ++v) at[key(v)] = v;
+    }
     std::vector<std::array<uint32_t, 3>> points;
     std::vector<int32_t> values;
     points.reserve(m.points.size());
@@ -292,7 +302,8 @@ class Remover {
 
 }  // namespace
 
-void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, RemovalReport* report) {
+void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, RemovalReport* report,
+                    RemovalCandidates candidates) {
   *report = RemovalReport{};
   const uint32_t w = mesh->size[0], h = mesh->size[1];
   Remover remover(test, mesh);  // numbers the vertices in (y, x) order
@@ -315,6 +326,14 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, uint32_t max_passes, 
     order.resize(count.back());
     for (uint32_t v = 0; v < v_count; ++v)
       if (inner(v)) order[count[fineness(v)]++] = v;
+    if (candidates == RemovalCandidates::kBorderZone) {
+      // spec 8.9: the inner vertices of a triangle with a border vertex.
+      std::vector<uint8_t> zone(v_count, 0);
+      for (const auto& cell : mesh->cells)
+        if (!inner(cell[0]) || !inner(cell[1]) || !inner(cell[2]))
+          for (int k = 0; k < 3; ++k) zone[cell[k]] = 1;
+      order.erase(std::remove_if(order.begin(), order.end(), [&](uint32_t v) { return !zone[v]; }), order.end());
+    }
   }
   // Step 5: passes until one removes nothing (or max_passes). A vertex whose
   // star has not changed since it last stayed would stay again: it is not
