@@ -261,7 +261,7 @@ def mesh(field, bound, tile_borders):
 
 
 MAX_LINK = 64  # 8.8: a vertex whose link polygon has more points stays
-QUADTREE_MAX_LINK = 6  # 9.7: the quadtree's pass (D88)
+QUADTREE_MAX_LINK = 6  # 9.7: the quadtree's pass (D89)
 
 
 def bent(field, bound, x, y):
@@ -272,11 +272,13 @@ def bent(field, bound, x, y):
     return min(along_x, along_y) > bound
 
 
-def remove_vertices(field, bound, tris, passes=None, max_link=MAX_LINK, bent_stay=False):
+def remove_vertices(field, bound, tris, passes=None, border_zone=False, max_link=MAX_LINK, bent_stay=False):
     """9.7: every inner vertex whose link polygon clips into ears within E leaves.
 
     passes=1, max_link=6, bent_stay=True: the quadtree's one pass (9.7); the defaults: passes
-    until one removes none, links of up to 64 points (8.8)."""
+    until one removes none, links of up to 64 points (8.8).
+    border_zone: only the inner vertices of the triangles with a vertex on the grid's
+    border, as the mesh is on entry (8.8's border cleanup, with passes=1)."""
     W, H = field.W, field.H
     cache = {}
     star = {}
@@ -319,8 +321,14 @@ def remove_vertices(field, bound, tris, passes=None, max_link=MAX_LINK, bent_sta
             return T + [tuple(P)]
         return None
 
-    order = sorted((p for p in star if 0 < p[0] < W - 1 and 0 < p[1] < H - 1),
-                   key=lambda p: (fineness(p), p[1], p[0]))
+    def inner(p):
+        return 0 < p[0] < W - 1 and 0 < p[1] < H - 1
+
+    candidates = [p for p in star if inner(p)]
+    if border_zone:
+        zone = {p for t in tris if not all(inner(q) for q in t) for p in t if inner(p)}
+        candidates = [p for p in candidates if p in zone]
+    order = sorted(candidates, key=lambda p: (fineness(p), p[1], p[0]))
     done = 0
     while True:
         removed = 0

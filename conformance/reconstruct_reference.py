@@ -23,6 +23,7 @@ first copy holds the no-data value (a terrain sample never equals -32768).
 
   python3 conformance/reconstruct_reference.py IN.mrsv OUT --mrsv PATH/TO/mrsv
       [--max-error E] [--triangles N] [--progressive] [--no-border-rule] [--remove-vertices]
+      [--no-border-cleanup]
       [--region X0,Y0,X1,Y1]
       [--bytes N] [--levels K] [--canonical]
   writes the canonical output of 8.2 to OUT (--canonical is accepted and implied);
@@ -518,7 +519,7 @@ def crop(values, X, box):
 
 
 def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, border=True, levels=0,
-                log=None, remove=False, region=None):
+                log=None, remove=False, region=None, border_cleanup=True):
     stream = Stream(data)
     if stream.sample_type not in INTEGER_TYPES:
         raise Refused(f"{TYPE_NAMES.get(stream.sample_type, '?')} samples: 8.1 accepts integer samples only")
@@ -559,11 +560,14 @@ def reconstruct(data, mrsv, max_error=None, triangles=None, progressive=False, b
         mesh.check_delaunay()
         if log:
             log(f"stage s={s} end={end}: {len(mesh.rank)} vertices, {len(mesh.tris)} triangles")
-    if remove:  # 8.8: 9.7's pass, as quadtree_reference.py writes it from chapter 9
+    cleanup = border_cleanup and mesh.border and not progressive
+    if remove or cleanup:  # 8.8: 9.7's pass, as quadtree_reference.py writes it from chapter 9
         import quadtree_reference as qr  # here: that module imports this one
         field = qr.Field(X, Y, mesh.values)
         tris = [(mesh.xy(a), mesh.xy(b), mesh.xy(c)) for a, b, c in mesh.tris]
-        return qr.canonical(field, qr.remove_vertices(field, bound, tris))
+        if remove:
+            return qr.canonical(field, qr.remove_vertices(field, bound, tris))
+        return qr.canonical(field, qr.remove_vertices(field, bound, tris, passes=1, border_zone=True))
     return mesh.canonical()
 
 
@@ -577,6 +581,7 @@ def main():
     parser.add_argument("--progressive", action="store_true")
     parser.add_argument("--no-border-rule", action="store_true")
     parser.add_argument("--remove-vertices", action="store_true")
+    parser.add_argument("--no-border-cleanup", action="store_true")
     parser.add_argument("--region")
     parser.add_argument("--bytes", type=int)
     parser.add_argument("--levels", type=int, default=0)
@@ -592,7 +597,7 @@ def main():
         out = reconstruct(data, args.mrsv, args.max_error, args.triangles, args.progressive,
                           not args.no_border_rule, args.levels,
                           None if args.quiet else (lambda m: print(m, file=sys.stderr)), args.remove_vertices,
-                          args.region)
+                          args.region, not args.no_border_cleanup)
     except Refused as e:
         print(f"refused: {e}", file=sys.stderr)
         return 1

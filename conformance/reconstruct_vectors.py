@@ -134,7 +134,8 @@ def build(data_dir, mrsv):
     out.append(("sh33_stored", encode(mrsv, sh33, (33, 33), ["--coding", "stored"]),
                 f"stored 33x33 int16 crop of {where_sh33}",
                 [["--max-error", "20"], ["--max-error", "2.5"], ["--max-error", "0"],
-                 ["--max-error", "1", "--no-border-rule"], ["--triangles", "50"],
+                 ["--max-error", "1", "--no-border-rule"], ["--max-error", "2.5", "--no-border-cleanup"],
+                 ["--triangles", "50"],
                  ["--max-error", "20", "--triangles", "40"], ["--max-error", "1", "--progressive"],
                  ["--max-error", "2147483648"], ["--max-error", ".5"],
                  ["!", "--max-error", "2.5000000001"], ["!", "--max-error", "2147483648.5"],
@@ -195,7 +196,8 @@ def build(data_dir, mrsv):
     where_sh17 = "Mt St Helens (mt_st_helens_317x460) rows 300-364, cols 40-56"
     out.append(("sh17x65_lossless", encode(mrsv, sh17, (17, 65), ["--lossless"]),
                 f"lossless 17x65 int16 (the encoder's choice of route) of {where_sh17}",
-                [["--max-error", "1"], ["--max-error", "0", "--progressive"], ["--max-error", "2.5", "--no-border-rule"],
+                [["--max-error", "1"], ["--max-error", "1", "--no-border-cleanup"], ["--max-error", "0", "--progressive"],
+                 ["--max-error", "2.5", "--no-border-rule"],
                  ["--max-error", "2.5", "--remove-vertices"]]))
     fuji = crop(data_dir, "fuji", 750, 850, 33, 33)
     where_fuji = "Mt Fuji's summit (srtm3_N35E138_mt_fuji_1201x1201) rows 750-782, cols 850-882, 45 voids"
@@ -265,6 +267,9 @@ def rules_of_case(args, stream, refused):
         tags += ["R8.7-1", "R8.7-2"]
     if "--remove-vertices" in args:
         tags += ["R8.8-1"] + ["R9.4-1", "R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
+    elif ("--max-error" in args and "--no-border-rule" not in args and "--progressive" not in args
+          and "--no-border-cleanup" not in args):
+        tags += ["R8.8-2"] + ["R9.4-1", "R9.7-1", "R9.7-2", "R9.7-3", "R9.7-4", "R9.7-5"]
     if "--region" in args:
         tags.append("R8.1-3")
     return tags

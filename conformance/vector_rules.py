@@ -18,6 +18,8 @@ R8_MESH = ["R8-1", "R8.2-1", "R8.2-2", "R8.2-3", "R8.3-1", "R8.3-2", "R8.4-1", "
 
 # The vertex-removal pass after insertion (8.8) is chapter 9's (9.4's test, 9.7).
 R8_REMOVAL = ["R8.8-1", "R9.4-1"] + R9_REMOVAL
+# Its border cleanup (8.8, the default with the border rule and a bound) likewise.
+R8_CLEANUP = ["R8.8-2", "R9.4-1"] + R9_REMOVAL
 
 
 def _in_order(tags):
@@ -314,13 +316,15 @@ RULES = {
     # --- mesh reconstruction (reconstruct_vectors.py; each lists its reconstructions) ---
     # Every stream with reconstructions: the canonical output, the predicates, the
     # triangulation and the greedy insertion with bounds and limits (8.2 to 8.6).
-    **{n: R8_MESH for n in ("coast33_stored", "grid_2x2_stored")},
-    "sh33_stored": _in_order(R8_MESH + ["R8.1-3", "R8.7-1"] + R8_REMOVAL),
-    **{n: R8_MESH + ["R8.7-1", "R8.7-2"] for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive",
-                                                  "bt65x49_maxerr2_progressive", "grid_5x3_lossless")},
-    "sh17x65_lossless": R8_MESH + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
-    "fuji33_mask_lossless_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"] + R8_REMOVAL,
-    "fuji33_mask_psnr45_progressive": R8_MESH[:1] + ["R8.1-1"] + R8_MESH[1:] + ["R8.7-1", "R8.7-2"],
+    **{n: _in_order(R8_MESH + R8_CLEANUP) for n in ("coast33_stored", "grid_2x2_stored")},
+    "sh33_stored": _in_order(R8_MESH + ["R8.1-3", "R8.7-1"] + R8_REMOVAL + ["R8.8-2"]),
+    **{n: _in_order(R8_MESH + ["R8.7-1", "R8.7-2"] + R8_CLEANUP)
+       for n in ("sh33_lossless_progressive", "bt65x49_psnr40_progressive", "bt65x49_maxerr2_progressive")},
+    "grid_5x3_lossless": R8_MESH + ["R8.7-1", "R8.7-2"],
+    "sh17x65_lossless": _in_order(R8_MESH + ["R8.7-1", "R8.7-2"] + R8_REMOVAL + ["R8.8-2"]),
+    # The no-data mask (8.1) as well.
+    "fuji33_mask_lossless_progressive": _in_order(R8_MESH + ["R8.1-1", "R8.7-1", "R8.7-2"] + R8_REMOVAL + ["R8.8-2"]),
+    "fuji33_mask_psnr45_progressive": _in_order(R8_MESH + ["R8.1-1", "R8.7-1", "R8.7-2"] + R8_CLEANUP),
     **{n: ["R8.1-2"] for n in ("float32_33x33_stored", "line_33_int16", "col_1x33_int16", "row_33x1_int16")},
 
     # --- mesh reconstruction of 3-D grids (reconstruct_vectors3.py; spec 10) ---

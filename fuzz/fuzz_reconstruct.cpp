@@ -2,7 +2,8 @@
 // decodes to: Delaunay insertion in stages and the quadtree, on grids of at
 // most 64 x 64 samples (larger ones are skipped, so every input stays fast).
 // Checks what must hold for any samples: the triangles tile the grid's
-// rectangle (counter-clockwise, areas summing to it).
+// rectangle (counter-clockwise, areas summing to it), also after the border
+// cleanup (8.8) and the quadtree's removal pass (9.7).
 #include <cstdint>
 #include <cstdlib>
 
@@ -50,6 +51,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   mrsv::GridMesh mesh;
   inserter.mesh(&mesh);
   checkTiling(mesh);
+  if (mrsv::borderCleanupApplies(limits, false)) {  // spec 8.8's border cleanup (on the stages' mesh)
+    const size_t points = mesh.points.size(), cells = mesh.cells.size();
+    uint64_t removed = 0;
+    if (!mrsv::cleanBorderZone(field, limits.max_error, &mesh, &removed, &error)) std::abort();
+    if (mesh.points.size() + removed != points || mesh.cells.size() + 2 * removed != cells) std::abort();
+    checkTiling(mesh);
+  }
 
   mrsv::QuadtreeOptions qt;
   qt.threshold = limits.max_error;

@@ -31,7 +31,7 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
                    const std::optional<double>& max_error, const std::optional<uint64_t>& triangles,
                    const std::optional<uint64_t>& tets, int levels, const py::object& byte_limit,
                    bool border_rule, const std::string& distance, double z_scale, bool remove_vertices,
-                   const py::object& region_object) {
+                   const py::object& region_object, bool border_cleanup) {
   if (method != "insertion" && method != "quadtree") throw py::value_error("method= must be 'insertion' or 'quadtree'");
   if (triangles && tets) throw py::value_error("give triangles= or tets=, not both");
   if ((triangles && *triangles == 0) || (tets && *tets == 0))
@@ -119,6 +119,8 @@ py::tuple meshGrid(const py::object& source_object, const std::string& method,
       ok = inserter.refine(field, stage.shift, limits, &error);
       if (ok) inserter.mesh(&mesh);
       if (ok && remove_vertices) ok = removeInnerVertices(field, limits.max_error, &mesh, nullptr, &error);
+      else if (ok && border_cleanup && borderCleanupApplies(limits, false))  // one stage: not progressive
+        ok = cleanBorderZone(field, limits.max_error, &mesh, nullptr, &error);
     } else if (ok) {
       VolumeInserter inserter(grid.header.size_x, grid.header.size_y, grid.header.size_z);
       inserter.setDistance(distance == "trilinear" ? VolumeDistance::kTrilinear : VolumeDistance::kMesh);
@@ -150,7 +152,7 @@ void registerReconstruct(py::module_& m) {
         py::arg("max_error") = py::none(), py::arg("triangles") = py::none(), py::arg("tets") = py::none(),
         py::arg("levels") = 0, py::arg("bytes") = py::none(), py::arg("border_rule") = true,
         py::arg("distance") = "mesh", py::arg("z_scale") = 1.0, py::arg("remove_vertices") = false,
-        py::arg("region") = py::none(),
+        py::arg("region") = py::none(), py::arg("border_cleanup") = true,
         R"doc(An adaptive mesh of a grid stream of integer samples (as 'mrsv mesh').
 
 method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
@@ -158,7 +160,9 @@ method: 'insertion' (Delaunay insertion, spec 8; 2-D and 3-D) or 'quadtree'
 (2-D) / tets= (3-D) cells. levels and bytes choose the stage as in decode;
 border_rule (spec 8.6), distance ('mesh'|'trilinear', 3-D), z_scale and
 remove_vertices (2-D: the vertex-removal pass of spec 9.7 and 8.8) as the
-CLI's. A tiled stream (encode(tile=...)) is meshed whole, without levels.
+CLI's; border_cleanup=False as --no-border-cleanup (spec 8.8: by default,
+with border_rule and max_error, the inner vertices next to the sides are
+tried once for removal). A tiled stream (encode(tile=...)) is meshed whole, without levels.
 region: mesh only a box (as 'mrsv mesh --region', spec 8.1):
 ((x0, y0[, z0]), (x1, y1[, z1])), half-open, x, y, z order as in decode.
 From a path a tiled stream reads only the tiles the box touches. The

@@ -48,6 +48,21 @@ def test_removal_pass_has_fewer_triangles(terrain):
         mrsv.mesh_grid(terrain, triangles=500, remove_vertices=True)
 
 
+def test_border_cleanup(terrain):
+    """Spec 8.8: by default the inner vertices next to the sides are tried once for removal."""
+    def sides(vertices):
+        grid = vertices[:, :2] / 30
+        on = (grid[:, 0] == 0) | (grid[:, 1] == 0) | (grid[:, 0] == 127) | (grid[:, 1] == 127)
+        return sorted(map(tuple, grid[on]))
+
+    for e in (5, 20):
+        cleaned_vertices, cleaned, _ = mrsv.mesh_grid(terrain, max_error=e)
+        raw_vertices, raw, _ = mrsv.mesh_grid(terrain, max_error=e, border_cleanup=False)
+        assert len(cleaned) < len(raw)
+        assert len(raw) - len(cleaned) == 2 * (len(raw_vertices) - len(cleaned_vertices))
+        assert sides(cleaned_vertices) == sides(raw_vertices)
+
+
 def test_cell_budget_and_levels(terrain):
     _, triangles, _ = mrsv.mesh_grid(terrain, triangles=500)
     assert 500 <= len(triangles) <= 502

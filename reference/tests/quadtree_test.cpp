@@ -182,7 +182,7 @@ TEST(Quadtree, MaxErrorHonouredOnRealTerrains) {
 // everywhere, its border is the tree's (so tiles still meet), and it has at
 // most 1.5 x the triangles of Delaunay insertion (issue 22; measured 0.87 to
 // 1.21 x on the bench's crops with the pass's link bound of 6 points and bent
-// points staying, D88).
+// points staying, D89).
 TEST(Quadtree, RemovalPassKeepsTheBoundAndTheBorder) {
   struct Crop { const char* name; uint32_t x0, y0, w, h; };
   const Crop crops[] = {{"mt_st_helens", 0, 0, 317, 460}, {"big_tujunga", 300, 100, 400, 300},

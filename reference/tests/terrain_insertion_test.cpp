@@ -19,6 +19,8 @@
 #include "mrsv/quadtree_mesh.h"
 #include "reconstruct/candidate_queue.h"
 #include "reconstruct/delaunay2.h"
+#include "reconstruct/quadtree_error.h"
+#include "reconstruct/quadtree_removal.h"
 
 namespace mrsv {
 namespace {
@@ -179,6 +181,39 @@ TEST(TerrainInsertion, RemovalPassKeepsTheBoundAndTheBorder) {
         EXPECT_EQ(m.points.size() + removed, inserted.points.size());
         EXPECT_LT(m.cells.size(), inserted.cells.size() * 4 / 5);
       }
+}
+
+// spec 8.8's border cleanup: the bound on every sample, the sides' vertices
+// kept, fewer triangles; and run on the sub-mesh around the border zone it
+// gives the mesh the same pass run on the whole mesh gives.
+TEST(TerrainInsertion, BorderCleanupKeepsTheBoundAndTheBorder) {
+  const SampleField helens = test::terrainCrop("mt_st_helens_317x460_int16le.raw.zst", 0, 0, 317, 460);
+  const SampleField fuji = test::terrainCrop("srtm3_N35E138_mt_fuji_1201x1201_int16le.raw.zst", 441, 304, 460, 378);
+  uint64_t removed_total = 0;
+  for (const SampleField* f : {&helens, &fuji})
+    for (const char* e : {"1", "5", "20", "50"}) {
+      SCOPED_TRACE(std::string(e) + " m");
+      const GridMesh inserted = insertionMesh(*f, e, true);
+      ErrorBound b;
+      parseErrorBound(e, &b);
+      GridMesh m = inserted;
+      uint64_t removed = 0;
+      std::string problem;
+      ASSERT_TRUE(cleanBorderZone(*f, b, &m, &removed, &problem)) << problem;
+      EXPECT_EQ(test::triangulationProblem(m), "");
+      double worst = 0;
+      EXPECT_TRUE(test::withinBoundEverywhere(*f, m, b, &worst)) << worst;
+      EXPECT_EQ(test::borderPoints(m), test::borderPoints(inserted));
+      EXPECT_EQ(m.points.size() + removed, inserted.points.size());
+      EXPECT_EQ(m.cells.size() + 2 * removed, inserted.cells.size());
+      GridMesh whole = inserted;
+      quadtree::RemovalReport report;
+      quadtree::removeVertices(quadtree::ErrorTest(*f, b), &whole, quadtree::kBorderCleanup, &report);
+      EXPECT_EQ(report.removed, removed);
+      EXPECT_TRUE(canonicalGridMeshOutput(whole) == canonicalGridMeshOutput(m));
+      removed_total += removed;
+    }
+  EXPECT_GT(removed_total, 100u);
 }
 
 TEST(TerrainInsertion, TriangleCountLimit) {

@@ -42,10 +42,11 @@ const char kMeshHelp[] =
     "  --epsilon X           quadtree: the paper's wavelet criterion threshold\n"
     "  --remove-vertices     2-D: after the mesh, remove every inner vertex whose star\n"
     "                        can be re-triangulated within E (spec 9.7: one pass after\n"
-    "                        the quadtree, 0.56 to 0.87 x insertion's triangles for 3 to\n"
-    "                        6 x the tree's time; 8.8: passes until none leaves after\n"
-    "                        insertion, which then needs --max-error and no\n"
-    "                        --progressive, 0.5 to 0.85 x its triangles)\n"
+    "                        the quadtree over links of at most 6 points, sharply bent\n"
+    "                        points staying, 0.87 to 1.21 x insertion's triangles for\n"
+    "                        1.9 to 2.8 x the tree's time; 8.8: passes until none\n"
+    "                        leaves after insertion, which then needs --max-error and\n"
+    "                        no --progressive, 0.5 to 0.85 x its triangles)\n"
     "  --distance mesh|trilinear  3-D insertion: a sample's distance to the current\n"
     "                        mesh (default; fewer tets at the same error, D62) or the\n"
     "                        paper's, to the trilinear interpolant of its cell\n"
@@ -55,6 +56,11 @@ const char kMeshHelp[] =
     "  --no-border-rule      insertion, 2-D: let the greedy choice place the vertices\n"
     "                        of the sides too (by default each side is refined from its\n"
     "                        own samples, so that adjacent tiles meet without cracks)\n"
+    "  --no-border-cleanup   insertion, 2-D: keep the Delaunay mesh as inserted (by\n"
+    "                        default, with the border rule and --max-error and without\n"
+    "                        --progressive, the inner vertices next to the sides are\n"
+    "                        then tried once for removal, spec 8.8, winning back the\n"
+    "                        triangles the border rule costs)\n"
     "  --bytes N             read only the first N bytes of IN, as if the rest had not\n"
     "                        arrived\n"
     "  --levels K            use the stream without its K finest levels\n"
@@ -90,7 +96,7 @@ int runMesh(int argc, char** argv) {
   std::string error;
   if (!args.parse(argc, argv,
                   {{"method", "max-error", "triangles", "tets", "epsilon", "bytes", "levels", "z-scale", "distance", "region"},
-                   {"progressive", "no-border-rule", "remove-vertices", "canonical", "quiet", "help"},
+                   {"progressive", "no-border-rule", "no-border-cleanup", "remove-vertices", "canonical", "quiet", "help"},
                    {}},
                   &error))
     return fail(cmd, error + " (see 'mrsv mesh --help')", kExitUsage);
@@ -265,6 +271,13 @@ int runMesh(int argc, char** argv) {
       if (!removeInnerVertices(field, req.limits.max_error, &mesh, &removed, &error))
         return fail(cmd, in + ": " + error, kExitInvalidData);
       if (!req.quiet) std::fprintf(stderr, "mrsv mesh: %llu vertices removed after insertion\n", (unsigned long long)removed);
+    } else if (dims == 2 && borderCleanupApplies(req.limits, req.progressive) && !args.flag("no-border-cleanup")) {
+      uint64_t removed = 0;
+      if (!cleanBorderZone(field, req.limits.max_error, &mesh, &removed, &error))
+        return fail(cmd, in + ": " + error, kExitInvalidData);
+      if (!req.quiet)
+        std::fprintf(stderr, "mrsv mesh: %llu vertices removed next to the sides (border cleanup)\n",
+                     (unsigned long long)removed);
     }
   } else if (req.method == "quadtree") {
     // The quadtree is bottom-up (paper 4): one stage, the last.

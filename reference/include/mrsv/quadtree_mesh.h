@@ -61,8 +61,9 @@ struct QuadtreeOptions {
   uint64_t max_triangles = 0;  // > 0: search the threshold (spec 9.6)
   bool tile_borders = false;   // spec 9.5; kMaxError only, grids of at least 4 x 4
   // spec 9.7 (kMaxError only): interior vertices removed after the tree, in one
-  // pass, while every triangle stays within E; 0.56 to 0.87 x insertion's
-  // triangles for 3 to 6 x the tree's time (D83, D86).
+  // pass over the links of at most 6 points, bent grid points staying, while
+  // every triangle stays within E; 0.87 to 1.21 x insertion's triangles for
+  // 1.9 to 2.8 x the tree's time (D83, D86, D89).
   bool remove_vertices = false;
 };
 

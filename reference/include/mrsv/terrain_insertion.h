@@ -67,4 +67,23 @@ class TerrainInserter {
   std::unique_ptr<State> state_;
 };
 
+// spec 8.8, the border cleanup: one pass of the vertex-removal test (9.7)
+// with bound E over the border zone of `mesh` (a 2-D mesh of `field`'s grid,
+// as TerrainInserter::mesh() gives it): the inner vertices of the triangles
+// that have a vertex on the grid's border. Every triangle it makes is within
+// E, and the border's vertices stay, so tiles still meet. What the border
+// rule's polylines cost in triangles is won back there (D88). Returns the
+// vertices removed; false with `error` when the mesh is not a 2-D mesh of
+// the field's size or E is not set.
+// Whether spec 8.8's border cleanup follows an insertion with these limits:
+// the border rule with a bound, and not progressive (a progressive run's
+// vertex sets must each hold the previous one's). The caller also leaves it
+// out when remove_vertices asks for 8.8's passes (they try every inner
+// vertex) or the user turns it off.
+inline bool borderCleanupApplies(const InsertionLimits& limits, bool progressive) {
+  return limits.border_rule && limits.max_error.set() && !progressive;
+}
+bool cleanBorderZone(const SampleField& field, const ErrorBound& bound, GridMesh* mesh, uint64_t* removed,
+                     std::string* error);
+
 }  // namespace mrsv

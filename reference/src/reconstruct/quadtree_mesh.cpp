@@ -255,7 +255,7 @@ bool meshWith(const SampleField& field, const QuadtreeDetails* details, Quadtree
   report->removal_passes = 0;
   if (remove_vertices) {
     quadtree::RemovalReport removal;
-    quadtree::removeVertices(test, out, quadtree::kAfterQuadtree, &removal);  // spec 9.7 (D86, D88)
+    quadtree::removeVertices(test, out, quadtree::kAfterQuadtree, &removal);  // spec 9.7 (D86, D89)
     report->vertices_removed = removal.removed;
     report->removal_passes = removal.passes;
   }

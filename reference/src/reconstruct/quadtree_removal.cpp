@@ -14,7 +14,7 @@ namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 // spec 8.8: a star larger than this is left alone. It bounds the ear search,
-// cubic in the link's size. (The quadtree's pass, 9.7, stops at 6: D88.)
+// cubic in the link's size. (The quadtree's pass, 9.7, stops at 6: D89.)
 constexpr size_t kMaxLink = kAfterInsertion.max_link;
 // Links up to this size are first checked for a triangle that could hold the
 // removed vertex's sample (Remover::coverable); larger ones go straight to
@@ -25,7 +25,7 @@ constexpr size_t kMaxCoverCheck = 12;
 // both axes: its sample is further than E from the sum of its neighbours'
 // minus itself, |2 s(x, y) - s(x-1, y) - s(x+1, y)| > E, and so across y.
 // Such a point is a peak, a pit or a saddle of the grid at the scale of one
-// sample, which the ears cannot cut off at that E on most terrains (D88);
+// sample, which the ears cannot cut off at that E on most terrains (D89);
 // it is not tried.
 bool bent(const ErrorTest& test, uint32_t x, uint32_t y) {
   const SampleField& f = test.field();
@@ -314,10 +314,22 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, const RemovalRules& r
   // counting sort).
   std::vector<uint32_t> order;
   {
-    std::vector<uint32_t> at(uint64_t{w} * h, kNone);
-    for (uint32_t v = 0; v < mesh->points.size(); ++v) {
+    auto inner = [&](uint32_t v) {
       const auto& p = mesh->points[v];
-      if (p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h) at[uint64_t{p[1]} * w + p[0]] = v;
+      return p[0] > 0 && p[1] > 0 && p[0] + 1 < w && p[1] + 1 < h;
+    };
+    auto key = [&](uint32_t v) { return uint64_t{mesh->points[v][1]} * w + mesh->points[v][0]; };
+    std::vector<uint32_t> at;  // the inner vertices in (y, x) order, kNone where none
+    if (mesh->points.size() * uint64_t{16} < uint64_t{w} * h) {
+      // Few points for the grid (the border cleanup's sub-mesh, 8.8): sorted,
+      // not swept, so that memory follows the mesh rather than the grid.
+      for (uint32_t v = 0; v < mesh->points.size(); ++v)
+        if (inner(v)) at.push_back(v);
+      std::sort(at.begin(), at.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    } else {
+      at.assign(uint64_t{w} * h, kNone);
+      for (uint32_t v = 0; v < mesh->points.size(); ++v)
+        if (inner(v)) at[key(v)] = v;
     }
     std::vector<uint32_t> count(34, 0);
     auto fineness = [&](uint32_t v) {
@@ -329,6 +341,15 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, const RemovalRules& r
     order.resize(count.back());
     for (uint32_t v : at)
       if (v != kNone) order[count[fineness(v)]++] = v;
+    if (rules.candidates == RemovalCandidates::kBorderZone) {
+      // spec 8.8: the inner vertices of a triangle with a border vertex
+      // (mesh->cells is still the mesh on entry).
+      std::vector<uint8_t> zone(mesh->points.size(), 0);
+      for (const auto& cell : mesh->cells)
+        if (!inner(cell[0]) || !inner(cell[1]) || !inner(cell[2]))
+          for (int k = 0; k < 3; ++k) zone[cell[k]] = 1;
+      order.erase(std::remove_if(order.begin(), order.end(), [&](uint32_t v) { return !zone[v]; }), order.end());
+    }
   }
   // Step 5: passes until one removes nothing (or max_passes). A vertex whose
   // star has not changed since it last stayed would stay again: it is not

@@ -23,7 +23,8 @@ list(APPEND MRSV_RECONSTRUCT_SOURCES
   reference/src/reconstruct/quadtree_error.cpp
   reference/src/reconstruct/quadtree_mesh.cpp
   reference/src/reconstruct/quadtree_removal.cpp
-  reference/src/reconstruct/quadtree_tree.cpp)
+  reference/src/reconstruct/quadtree_tree.cpp
+  reference/src/reconstruct/border_cleanup.cpp)
 list(APPEND MRSV_RECONSTRUCT_TESTS
   reference/tests/quadtree_test.cpp)
 
