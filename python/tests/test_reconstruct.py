@@ -41,7 +41,8 @@ def test_removal_pass_has_fewer_triangles(terrain):
     _, tree, _ = mrsv.mesh_grid(terrain, method="quadtree", max_error=5)
     _, removed, _ = mrsv.mesh_grid(terrain, method="quadtree", max_error=5, remove_vertices=True)
     _, inserted, _ = mrsv.mesh_grid(terrain, max_error=5)
-    assert len(removed) < len(inserted) < len(tree)
+    # The quadtree's pass (spec 9.7, D89) aims at issue 22's 1.5 x insertion's triangles, not below them.
+    assert len(inserted) < len(tree) and len(removed) < len(tree) and 2 * len(removed) <= 3 * len(inserted)
     _, inserted_removed, _ = mrsv.mesh_grid(terrain, max_error=5, remove_vertices=True)
     assert len(inserted_removed) < len(inserted)
     with pytest.raises(ValueError, match="remove_vertices"):
