@@ -230,7 +230,8 @@ class Remover {
       const size_t m = ring_.size();
       size_t ear = m;
       for (size_t i = 0; i < m && ear == m; ++i) {
-        const size_t a = ring_[(i + m - 1) % m], b = ring_[i], c = ring_[(i + 1) % m];
+        // The neighbours around the ring without a division (m is not a constant).
+        const size_t a = ring_[i == 0 ? m - 1 : i - 1], b = ring_[i], c = ring_[i + 1 == m ? 0 : i + 1];
         if (orient(a, b, c) <= 0) continue;
         bool empty = true;
         for (size_t j = 0; j < m && empty; ++j) {
@@ -241,7 +242,7 @@ class Remover {
         if (empty && within(a, b, c)) ear = i;
       }
       if (ear == m) return false;
-      made_.push_back({poly_[ring_[(ear + m - 1) % m]], poly_[ring_[ear]], poly_[ring_[(ear + 1) % m]]});
+      made_.push_back({poly_[ring_[ear == 0 ? m - 1 : ear - 1]], poly_[ring_[ear]], poly_[ring_[ear + 1 == m ? 0 : ear + 1]]});
       ring_.erase(ring_.begin() + static_cast<std::ptrdiff_t>(ear));
     }
     if (orient(ring_[0], ring_[1], ring_[2]) <= 0 || !within(ring_[0], ring_[1], ring_[2])) return false;
@@ -272,7 +273,7 @@ class Remover {
         if (opposite_[c] != kNone) continue;
         const uint32_t x = vertex_[next(c)], y = vertex_[prev(c)];
         const size_t px = position(x);
-        if (poly_[(px + 1) % n] == y) {  // a polygon edge: the triangle outside
+        if (poly_[px + 1 == n ? 0 : px + 1] == y) {  // a polygon edge: the triangle outside
           opposite_[c] = outer[px];
           if (outer[px] != kNone) opposite_[outer[px]] = c;
           continue;
