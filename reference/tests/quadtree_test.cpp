@@ -180,7 +180,7 @@ TEST(Quadtree, MaxErrorHonouredOnRealTerrains) {
 
 // spec 9.7: after the removal pass the mesh is still crack-free and within E
 // everywhere, its border is the tree's (so tiles still meet), and it has at
-// most 1.5 x the triangles of Delaunay insertion (issue 22; measured 0.87 to
+// most 1.5 x the triangles of Delaunay insertion (issue 22; measured 0.90 to
 // 1.21 x on the bench's crops with the pass's link bound of 6 points and bent
 // points staying, D89).
 TEST(Quadtree, RemovalPassKeepsTheBoundAndTheBorder) {

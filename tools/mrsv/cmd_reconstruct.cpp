@@ -43,7 +43,7 @@ const char kMeshHelp[] =
     "  --remove-vertices     2-D: after the mesh, remove every inner vertex whose star\n"
     "                        can be re-triangulated within E (spec 9.7: one pass after\n"
     "                        the quadtree over links of at most 6 points, sharply bent\n"
-    "                        points staying, 0.87 to 1.21 x insertion's triangles for\n"
+    "                        points staying, 0.90 to 1.21 x insertion's triangles for\n"
     "                        1.9 to 2.8 x the tree's time; 8.8: passes until none\n"
     "                        leaves after insertion, which then needs --max-error and\n"
     "                        no --progressive, 0.5 to 0.85 x its triangles)\n"

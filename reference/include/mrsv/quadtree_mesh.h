@@ -62,7 +62,7 @@ struct QuadtreeOptions {
   bool tile_borders = false;   // spec 9.5; kMaxError only, grids of at least 4 x 4
   // spec 9.7 (kMaxError only): interior vertices removed after the tree, in one
   // pass over the links of at most 6 points, bent grid points staying, while
-  // every triangle stays within E; 0.87 to 1.21 x insertion's triangles for
+  // every triangle stays within E; 0.90 to 1.21 x insertion's triangles for
   // 1.9 to 2.8 x the tree's time (D83, D86, D89).
   bool remove_vertices = false;
 };

@@ -13,6 +13,7 @@ namespace mrsv::quadtree {
 namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
+constexpr uint32_t kPaired = kNone - 1;  // an edge whose two corners have met
 // spec 8.8: a star larger than this is left alone. It bounds the ear search,
 // cubic in the link's size. (The quadtree's pass, 9.7, stops at 6: D89.)
 constexpr size_t kMaxLink = kAfterInsertion.max_link;
@@ -140,9 +141,10 @@ class Remover {
         uint32_t& w = waiting[key[k]];
         if (w == kNone) {
           w = 3 * t + k;
-        } else {
+        } else if (w != kPaired) {  // a third corner on one edge (not a triangulation) stays unpaired
           opposite_[3 * t + k] = w;
           opposite_[w] = 3 * t + k;
+          w = kPaired;
         }
       }
     }
