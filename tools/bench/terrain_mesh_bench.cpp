@@ -9,7 +9,7 @@
 //   - on the largest 2^k + 1 square crop, MARTINI (node) and, when built,
 //     the quadtree (spec 9).
 //
-//   terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick]
+//   terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick] [--only insertion|quadtree]
 //
 // DIR holds node_modules with delatin and @mapbox/martini (tools/bench/
 // setup_peers.sh installs them into build/node_peers).
@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
   std::string peers = std::string(MRSV_SOURCE_DIR) + "/build/node_peers";
   std::vector<std::string> errors = {"1", "5", "20", "50"};
   bool quick = false;
+  std::string only;  // "insertion" or "quadtree": that part alone
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--peers" && i + 1 < argc) peers = argv[++i];
@@ -124,8 +125,11 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string e; std::getline(ss, e, ',');) errors.push_back(e);
     } else if (a == "--quick") quick = true;
+    else if (a == "--only" && i + 1 < argc && (std::string(argv[i + 1]) == "insertion" ||
+                                               std::string(argv[i + 1]) == "quadtree")) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick]\n");
+      std::fprintf(stderr,
+                   "usage: terrain_mesh_bench [--peers DIR] [--errors 1,5,20,50] [--quick] [--only insertion|quadtree]\n");
       return a == "--help" ? 0 : 2;
     }
   }
@@ -199,6 +203,7 @@ int main(int argc, char** argv) {
         for (uint32_t x = 0; x < side; ++x) c.field.values.push_back(field.at(x0 + x, y0 + y));
       crops.push_back(std::move(c));
     }
+    if (only == "quadtree") continue;
     std::vector<PeerResult> delatin;
     if (have_peers) delatin = runPeer(peers, "delatin", field, errors, scratch);
     for (size_t k = 0; k < errors.size(); ++k) {
@@ -280,6 +285,7 @@ int main(int argc, char** argv) {
       removal_rows.push_back(line);
     }
   }
+  if (only == "insertion") return 0;
   std::printf("\n## Insertion with the vertex-removal pass (spec 8.8) against Delatin (every sample checked)\n\n");
   std::printf("| terrain | max error | triangles | / insertion | / Delatin | speed-up over Delatin | ms (insertion + pass) | worst |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");

@@ -23,6 +23,21 @@ struct CellRef {
   uint32_t i, j;
 };
 
+// Table 9-2 by rising diagonal and mask, looked up once: the rounds and the
+// mesh ask it for every leaf.
+struct CandidateTables {
+  const quadtree::CellCandidates* at[2][16];
+  CandidateTables() {
+    for (int rising = 0; rising < 2; ++rising)
+      for (int mask = 0; mask < 16; ++mask) at[rising][mask] = &quadtree::cellCandidates(mask, rising != 0);
+  }
+};
+const CandidateTables kCandidates;
+
+const quadtree::CellCandidates& candidatesOf(int mask, uint32_t i, uint32_t j) {
+  return *kCandidates.at[quadtree::risingDiagonal(i, j) ? 1 : 0][mask];
+}
+
 // The grid point of polygon point `point` (table 9-1) of leaf (l, i, j).
 void cellPoint(const Tree& tree, int l, uint32_t i, uint32_t j, uint8_t point, uint32_t out[2]) {
   const uint8_t* off = quadtree::kPointOffset[point];
@@ -36,7 +51,7 @@ void cellPoint(const Tree& tree, int l, uint32_t i, uint32_t j, uint8_t point, u
 // candidate `choice` of table 9-2 (0: the table 9-1 entry).
 template <class Emit>
 void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int mask, int choice, Emit&& emit) {
-  const quadtree::CellCandidates& c = quadtree::cellCandidates(mask, quadtree::risingDiagonal(i, j));
+  const quadtree::CellCandidates& c = candidatesOf(mask, i, j);
   const quadtree::CellCandidates::Candidate& cand = c.candidate[choice];
   for (int k = 0; k < cand.count; ++k) {
     uint32_t p[3][2];
@@ -49,7 +64,7 @@ void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int ma
 // E, or -1. Each distinct triangle is tested at most once.
 int firstCandidateWithin(const Tree& tree, const quadtree::ErrorTest& test, int l, uint32_t i, uint32_t j,
                          int mask) {
-  const quadtree::CellCandidates& c = quadtree::cellCandidates(mask, quadtree::risingDiagonal(i, j));
+  const quadtree::CellCandidates& c = candidatesOf(mask, i, j);
   int8_t within[128];  // -1 unknown, 0 no, 1 yes
   std::fill_n(within, c.triangle.size(), int8_t{-1});
   for (size_t n = 0; n < c.candidate.size(); ++n) {

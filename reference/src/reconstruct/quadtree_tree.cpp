@@ -23,22 +23,6 @@ void Tree::init(uint32_t ox, uint32_t oy, uint32_t lx, uint32_t ly) {
   state_[top_][0] = kLeaf;
 }
 
-uint8_t Tree::across(int l, uint32_t i, uint32_t j, int side) const {
-  switch (side) {
-    case kBottom: return j == 0 ? kAbsent : state(l, i, j - 1);
-    case kRight: return i + 1 >= nx_[l] ? kAbsent : state(l, i + 1, j);
-    case kTop: return j + 1 >= ny_[l] ? kAbsent : state(l, i, j + 1);
-    default: return i == 0 ? kAbsent : state(l, i - 1, j);
-  }
-}
-
-int Tree::midpointMask(int l, uint32_t i, uint32_t j) const {
-  int mask = 0;
-  for (int side = 0; side < 4; ++side)
-    if (across(l, i, j, side) == kSplit) mask |= 1 << side;
-  return mask;
-}
-
 namespace {
 
 // Table 9-1, built once: mask 0 is two triangles on the diagonal; any other

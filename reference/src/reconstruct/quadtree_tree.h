@@ -34,11 +34,15 @@ class Tree {
   bool inside(int l, uint32_t i, uint32_t j) const {
     return (uint64_t{i} + 1) << l <= lx_ && (uint64_t{j} + 1) << l <= ly_;
   }
-  // The state of the cell across `side` of (l, i, j) at the same level;
-  // kAbsent beyond the tree's extent.
-  uint8_t across(int l, uint32_t i, uint32_t j, int side) const;
   // spec 9.3: bit s set when the same-level cell across side s is split.
-  int midpointMask(int l, uint32_t i, uint32_t j) const;
+  // Inline: the rounds and the mesh ask it for every leaf.
+  int midpointMask(int l, uint32_t i, uint32_t j) const {
+    const uint32_t nx = nx_[l];
+    const uint8_t* cell = state_[l].data() + (size_t{j} * nx + i);
+    const std::ptrdiff_t up = nx;
+    return (j > 0 && cell[-up] == kSplit ? 1 << kBottom : 0) | (i + 1 < nx && cell[1] == kSplit ? 1 << kRight : 0) |
+           (j + 1 < ny_[l] && cell[up] == kSplit ? 1 << kTop : 0) | (i > 0 && cell[-1] == kSplit ? 1 << kLeft : 0);
+  }
 
   // Splits leaf (l, i, j) and then every coarser leaf the 2:1 balance needs
   // split (spec 9.3). touched(l, i, j) is called for every leaf that is new or
