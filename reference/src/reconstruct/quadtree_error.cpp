@@ -47,8 +47,9 @@ bool ErrorTest::scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold
   const Acc v0 = base[0];
   const Acc u1 = base[y1 * int64_t{width} + x1] - v0, u2 = base[y2 * int64_t{width} + x2] - v0;
   const Acc A = u1 * a[1] + u2 * a[2], B = u1 * b[1] + u2 * b[2];
-  const int64_t ylo = std::min<int64_t>({0, y1, y2}), yhi = std::max<int64_t>({0, y1, y2});
-  const int64_t xlo = std::min<int64_t>({0, x1, x2}), xhi = std::max<int64_t>({0, x1, x2});
+  // Pairwise, not over an initializer list: this runs once per triangle test.
+  const int64_t ylo = std::min(int64_t{0}, std::min(y1, y2)), yhi = std::max(int64_t{0}, std::max(y1, y2));
+  const int64_t xlo = std::min(int64_t{0}, std::min(x1, x2)), xhi = std::max(int64_t{0}, std::max(x1, x2));
   if ((xhi - xlo + 1) * (yhi - ylo + 1) <= 64) {
     // A small box: every point of it, with the edge functions themselves
     // (w_0 = a_0 x + b_0 y + d, w_k = a_k x + b_k y), cheaper than the row

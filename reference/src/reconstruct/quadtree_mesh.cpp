@@ -38,14 +38,22 @@ const quadtree::CellCandidates& candidatesOf(int mask, uint32_t i, uint32_t j) {
   return *kCandidates.at[quadtree::risingDiagonal(i, j) ? 1 : 0][mask];
 }
 
-// The grid point of polygon point `point` (table 9-1) of leaf (l, i, j).
-void cellPoint(const Tree& tree, int l, uint32_t i, uint32_t j, uint8_t point, uint32_t out[2]) {
-  const uint8_t* off = quadtree::kPointOffset[point];
-  const uint32_t x0 = tree.originX() + (i << l), y0 = tree.originY() + (j << l);
-  // A level-0 cell has no midpoints, so its offsets are 0 or 2 halves of 1.
-  out[0] = x0 + (l == 0 ? off[0] / 2 : off[0] << (l - 1));
-  out[1] = y0 + (l == 0 ? off[1] / 2 : off[1] << (l - 1));
-}
+// The grid points of leaf (l, i, j)'s polygon (table 9-1), by the offsets of
+// kPointOffset: 0, a half side or a side. A level-0 cell has no midpoints, so
+// its half side is never asked for.
+struct CellGrid {
+  uint32_t x[3], y[3];
+  CellGrid(const Tree& tree, int l, uint32_t i, uint32_t j) {
+    const uint32_t x0 = tree.originX() + (i << l), y0 = tree.originY() + (j << l);
+    const uint32_t side = uint32_t{1} << l, half = side >> 1;
+    x[0] = x0, x[1] = x0 + half, x[2] = x0 + side;
+    y[0] = y0, y[1] = y0 + half, y[2] = y0 + side;
+  }
+  void point(uint8_t p, uint32_t out[2]) const {
+    out[0] = x[quadtree::kPointOffset[p][0]];
+    out[1] = y[quadtree::kPointOffset[p][1]];
+  }
+};
 
 // The grid points of leaf (l, i, j)'s triangles for midpoint mask `mask` and
 // candidate `choice` of table 9-2 (0: the table 9-1 entry).
@@ -53,9 +61,10 @@ template <class Emit>
 void forEachCellTriangle(const Tree& tree, int l, uint32_t i, uint32_t j, int mask, int choice, Emit&& emit) {
   const quadtree::CellCandidates& c = candidatesOf(mask, i, j);
   const quadtree::CellCandidates::Candidate& cand = c.candidate[choice];
+  const CellGrid grid(tree, l, i, j);
   for (int k = 0; k < cand.count; ++k) {
     uint32_t p[3][2];
-    for (int v = 0; v < 3; ++v) cellPoint(tree, l, i, j, c.triangle[cand.triangle[k]][v], p[v]);
+    for (int v = 0; v < 3; ++v) grid.point(c.triangle[cand.triangle[k]][v], p[v]);
     emit(p);
   }
 }
@@ -67,6 +76,7 @@ int firstCandidateWithin(const Tree& tree, const quadtree::ErrorTest& test, int 
   const quadtree::CellCandidates& c = candidatesOf(mask, i, j);
   int8_t within[128];  // -1 unknown, 0 no, 1 yes
   std::fill_n(within, c.triangle.size(), int8_t{-1});
+  const CellGrid grid(tree, l, i, j);
   for (size_t n = 0; n < c.candidate.size(); ++n) {
     const quadtree::CellCandidates::Candidate& cand = c.candidate[n];
     bool ok = true;
@@ -74,7 +84,7 @@ int firstCandidateWithin(const Tree& tree, const quadtree::ErrorTest& test, int 
       int8_t& w = within[cand.triangle[k]];
       if (w < 0) {
         uint32_t p[3][2];
-        for (int v = 0; v < 3; ++v) cellPoint(tree, l, i, j, c.triangle[cand.triangle[k]][v], p[v]);
+        for (int v = 0; v < 3; ++v) grid.point(c.triangle[cand.triangle[k]][v], p[v]);
         w = test.triangleWithin(p) ? 1 : 0;
       }
       ok = w == 1;
