@@ -181,15 +181,6 @@ int main(int argc, char** argv) {
     SampleField field;
     std::string error;
     if (!sampleFieldFromGrid(grid, &field, &error)) return 1;
-    // The prefixes' fields for the progressive stages.
-    const std::vector<ReconstructionStage> stages = reconstructionStages(grid, stream.size());
-    std::vector<SampleField> stage_fields(stages.size());
-    for (size_t k = 0; k < stages.size(); ++k) {
-      DecodedGrid prefix;
-      decodeGrid(stream.data(), stages[k].bytes, decode, &prefix);
-      sampleFieldFromGrid(prefix, &stage_fields[k], &error);
-    }
-
     // The largest 2^k + 1 square at the grid's centre, for MARTINI.
     {
       uint32_t side = 2;
@@ -204,6 +195,14 @@ int main(int argc, char** argv) {
       crops.push_back(std::move(c));
     }
     if (only == "quadtree") continue;
+    // The prefixes' fields for the progressive stages.
+    const std::vector<ReconstructionStage> stages = reconstructionStages(grid, stream.size());
+    std::vector<SampleField> stage_fields(stages.size());
+    for (size_t k = 0; k < stages.size(); ++k) {
+      DecodedGrid prefix;
+      decodeGrid(stream.data(), stages[k].bytes, decode, &prefix);
+      sampleFieldFromGrid(prefix, &stage_fields[k], &error);
+    }
     std::vector<PeerResult> delatin;
     if (have_peers) delatin = runPeer(peers, "delatin", field, errors, scratch);
     for (size_t k = 0; k < errors.size(); ++k) {
