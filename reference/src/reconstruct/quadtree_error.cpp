@@ -2,6 +2,7 @@
 #include "reconstruct/quadtree_error.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace mrsv::quadtree {
 namespace {
@@ -21,12 +22,7 @@ ErrorTest::ErrorTest(const SampleField& field, const ErrorBound& bound)
   }
 }
 
-// |s - m| <= num / den with m = n / d is |s d - n| <= num d / den; the left
-// side is an integer, so the right side may be floored.
-int64_t ErrorTest::thresholdFor(int64_t d) const {
-  int64_t product;
-  if (!__builtin_mul_overflow(bound_.num, d, &product))  // both >= 0
-    return bound_.den == 1 ? product : product / bound_.den;
+int64_t ErrorTest::thresholdWide(int64_t d) const {
   const __int128 t = static_cast<__int128>(bound_.num) * d / bound_.den;
   return t > INT64_MAX ? INT64_MAX : static_cast<int64_t>(t);
 }
@@ -55,6 +51,27 @@ bool ErrorTest::scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold
     // (w_0 = a_0 x + b_0 y + d, w_k = a_k x + b_k y), cheaper than the row
     // bounds' divisions.
     const int32_t* row = base + ylo * int64_t{width};
+    if constexpr (std::is_same_v<Acc, int64_t>) {
+      // Without a branch per point (whether a point of the box is inside is
+      // as good as random to the branch predictor): a point is inside when
+      // the three edge functions' OR has no sign bit, and within when
+      // 0 <= diff + threshold <= 2 threshold, one unsigned compare. The
+      // samples enter without v0 subtracted: in a box of at most 64 points,
+      // d <= 128 and |s d| < 2^39.
+      const uint64_t span = 2 * static_cast<uint64_t>(threshold);
+      for (int64_t y = ylo; y <= yhi; ++y, row += width) {
+        int64_t w0 = a[0] * xlo + b[0] * y + d, w1 = a[1] * xlo + b[1] * y, w2 = a[2] * xlo + b[2] * y;
+        int64_t fit = threshold - (A * xlo + B * y) - v0 * d;  // diff + threshold = row[x] d + fit
+        uint64_t bad = 0;
+        for (int64_t x = xlo; x <= xhi; ++x) {
+          const uint64_t inside = ~static_cast<uint64_t>(w0 | w1 | w2) >> 63;
+          bad |= inside & (static_cast<uint64_t>(row[x] * d + fit) > span);
+          w0 += a[0], w1 += a[1], w2 += a[2], fit -= A;
+        }
+        if (bad) return false;
+      }
+      return true;
+    }
     for (int64_t y = ylo; y <= yhi; ++y, row += width) {
       const Acc row_term = B * y;
       for (int64_t x = xlo; x <= xhi; ++x) {
@@ -111,26 +128,14 @@ bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
   return scanTriangle<__int128>(q, d, threshold);
 }
 
-bool ErrorTest::pointWithin(const uint32_t p[3][2], uint32_t x, uint32_t y) const {
-  auto orient = [](int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t cx, int64_t cy) {
-    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-  };
-  const int64_t d = orient(p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1]);
-  const int64_t w0 = orient(x, y, p[1][0], p[1][1], p[2][0], p[2][1]);
-  const int64_t w1 = orient(p[0][0], p[0][1], x, y, p[2][0], p[2][1]);
-  const int64_t w2 = orient(p[0][0], p[0][1], p[1][0], p[1][1], x, y);
-  const int64_t threshold = thresholdFor(d);
-  if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58)) {
-    // As scanTriangle<int64_t>: every term relative to the first vertex's sample.
-    const int64_t v0 = field_.at(p[0][0], p[0][1]);
-    const int64_t diff = (field_.at(x, y) - v0) * d -
-                         ((field_.at(p[1][0], p[1][1]) - v0) * w1 + (field_.at(p[2][0], p[2][1]) - v0) * w2);
-    return diff <= threshold && diff >= -threshold;
-  }
-  const __int128 diff = static_cast<__int128>(field_.at(x, y)) * d -
-                        (static_cast<__int128>(field_.at(p[0][0], p[0][1])) * w0 +
-                         static_cast<__int128>(field_.at(p[1][0], p[1][1])) * w1 +
-                         static_cast<__int128>(field_.at(p[2][0], p[2][1])) * w2);
+bool ErrorTest::sampleWithinWide(int64_t d, int64_t w1, int64_t w2, int64_t s0, int64_t s1, int64_t s2,
+                                 int64_t s) const {
+  // Every term in 128 bits, with w0 = d - w1 - w2 (the edge functions at a
+  // point sum to d).
+  const __int128 diff = static_cast<__int128>(s) * d -
+                        (static_cast<__int128>(s0) * (d - w1 - w2) + static_cast<__int128>(s1) * w1 +
+                         static_cast<__int128>(s2) * w2);
+  const __int128 threshold = thresholdFor(d);
   return diff <= threshold && diff >= -threshold;
 }
 

@@ -19,10 +19,19 @@ class ErrorTest {
   // plane through the three vertices' samples.
   bool triangleWithin(const uint32_t p[3][2]) const;
 
-  // Grid point (x, y), inside the closed triangle p[0..2] (counter-clockwise):
-  // true when its sample alone is within the bound of that plane (the test of
-  // triangleWithin for one sample).
-  bool pointWithin(const uint32_t p[3][2], uint32_t x, uint32_t y) const;
+  // The test of triangleWithin for one sample, from the parts a caller has:
+  // s is the sample at a point inside the closed counter-clockwise triangle
+  // p0 p1 p2 with d = orient(p0, p1, p2) > 0, w1 = orient(p0, point, p2) and
+  // w2 = orient(p0, p1, point); s0, s1, s2 are the vertices' samples. True
+  // when s is within the bound of the plane through the three.
+  bool sampleWithin(int64_t d, int64_t w1, int64_t w2, int64_t s0, int64_t s1, int64_t s2, int64_t s) const {
+    if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58)) {
+      const int64_t diff = (s - s0) * d - ((s1 - s0) * w1 + (s2 - s0) * w2);
+      const int64_t threshold = thresholdFor(d);
+      return diff <= threshold && diff >= -threshold;
+    }
+    return sampleWithinWide(d, w1, w2, s0, s1, s2, s);
+  }
 
   // Samples of grid points first + k * step for k = 0..n (step 1: along a row,
   // step = width: along a column): true when each is within the bound of the
@@ -35,7 +44,16 @@ class ErrorTest {
  private:
   template <class Acc>
   bool scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold) const;
-  int64_t thresholdFor(int64_t d) const;  // floor(E * d)
+  // floor(E * d). |s - m| <= num / den with m = n / d is |s d - n| <= num d /
+  // den; the left side is an integer, so the right side may be floored.
+  int64_t thresholdFor(int64_t d) const {
+    int64_t product;
+    if (!__builtin_mul_overflow(bound_.num, d, &product))  // both >= 0
+      return bound_.den == 1 ? product : product / bound_.den;
+    return thresholdWide(d);
+  }
+  int64_t thresholdWide(int64_t d) const;
+  bool sampleWithinWide(int64_t d, int64_t w1, int64_t w2, int64_t s0, int64_t s1, int64_t s2, int64_t s) const;
 
   const SampleField& field_;
   ErrorBound bound_;

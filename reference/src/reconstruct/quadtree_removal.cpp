@@ -67,42 +67,59 @@ class Remover {
   }
 
   bool present(uint32_t v) const { return corner_of_[v] != kNone; }
-  const std::vector<uint32_t>& link() const { return poly_; }
+  void prefetchCorner(uint32_t v) const {
+    __builtin_prefetch(&corner_of_[v]);
+    __builtin_prefetch(&mesh_->points[v]);
+  }
+  void prefetchStar(uint32_t v) const {
+    const uint32_t c = corner_of_[v];
+    if (c == kNone) return;
+    __builtin_prefetch(&vertex_[c]);
+    __builtin_prefetch(&opposite_[c]);
+  }
 
   // spec 9.7 steps 2 to 4 for interior vertex v: true when it left the mesh.
   bool tryRemove(uint32_t v) {
     // v's link, counter-clockwise: triangle (v, a, b) gives the edge a -> b.
-    poly_.clear();
-    star_.clear();
+    uint32_t link[kMaxLink + 1], star[kMaxLink + 1];
+    size_t n = 0;
     const uint32_t c0 = corner_of_[v];
     uint32_t c = c0;
     do {
-      poly_.push_back(vertex_[next(c)]);
-      star_.push_back(c);
-      const uint32_t across = opposite_[next(c)];  // the triangle across v -> b
-      if (across == kNone || poly_.size() > max_link_) return false;
+      const uint32_t to_b = next(c);
+      link[n] = vertex_[to_b];
+      star[n++] = c;
+      const uint32_t across = opposite_[to_b];  // the triangle across v -> b
+      if (across == kNone || n > max_link_) return false;
       c = next(across);
     } while (c != c0);
-    const size_t n = poly_.size();
     if (n < 3) return false;  // not a closed fan: a caller's mesh that is not a triangulation
     // The polygon starts at its smallest point in (y, x) order.
+    const auto& pts = mesh_->points;
     size_t first = 0;
     for (size_t i = 1; i < n; ++i) {
-      const auto &p = point(poly_[i]), &q = point(poly_[first]);
+      const auto &p = pts[link[i]], &q = pts[link[first]];
       if (p[1] < q[1] || (p[1] == q[1] && p[0] < q[0])) first = i;
     }
-    std::rotate(poly_.begin(), poly_.begin() + static_cast<std::ptrdiff_t>(first), poly_.end());
-    std::rotate(star_.begin(), star_.begin() + static_cast<std::ptrdiff_t>(first), star_.end());
-    for (size_t i = 0; i < n; ++i) {
-      x_[i] = point(poly_[i])[0];
-      y_[i] = point(poly_[i])[1];
+    const SampleField& field = test_.field();
+    n_ = n;
+    for (size_t i = 0, k = first; i < n; ++i, k = k + 1 == n ? 0 : k + 1) {
+      poly_[i] = link[k];
+      star_[i] = star[k];
+      const auto& p = pts[link[k]];
+      x_[i] = p[0], y_[i] = p[1];
+      s_[i] = field.at(p[0], p[1]);
     }
-    vx_ = point(v)[0], vy_ = point(v)[1];
+    vx_ = pts[v][0], vy_ = pts[v][1];
+    vs_ = field.at(pts[v][0], pts[v][1]);
     if (n <= kMaxCoverCheck && !coverable()) return false;
     if (!clipEars()) return false;
     replaceStar(v);
     return true;
   }
+  // v's link polygon after a successful tryRemove.
+  const uint32_t* link() const { return poly_; }
+  size_t linkSize() const { return n_; }
 
   // The mesh without the removed vertices and the dead triangles.
   // In place: the arrays only shrink, and corner_of_, no longer needed,
@@ -177,11 +194,16 @@ class Remover {
   int64_t orient(size_t a, size_t b, size_t c) const {
     return (x_[b] - x_[a]) * (y_[c] - y_[a]) - (y_[b] - y_[a]) * (x_[c] - x_[a]);
   }
-  // Does polygon triangle (a, b, c), counter-clockwise, hold v's point (its
-  // sides included)?
-  bool holdsV(size_t a, size_t b, size_t c) const {
-    auto side = [&](size_t p, size_t q) { return (x_[q] - x_[p]) * (vy_ - y_[p]) - (y_[q] - y_[p]) * (vx_ - x_[p]); };
-    return side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0;
+  // orient(a, b, v): v's side of polygon edge a -> b.
+  int64_t sideOfV(size_t a, size_t b) const { return (x_[b] - x_[a]) * (vy_ - y_[a]) - (y_[b] - y_[a]) * (vx_ - x_[a]); }
+  // Counter-clockwise polygon triangle (a, b, c), d = orient(a, b, c) > 0: 1
+  // when it holds v's point (its sides included) and v's sample is within E
+  // of it, 0 when it holds the point and the sample is not, -1 when it does
+  // not hold the point. The edge functions at v are its sides' orientations.
+  int vSampleIn(size_t a, size_t b, size_t c, int64_t d) const {
+    const int64_t w0 = sideOfV(b, c), w1 = sideOfV(c, a), w2 = sideOfV(a, b);
+    if (w0 < 0 || w1 < 0 || w2 < 0) return -1;
+    return test_.sampleWithin(d, w1, w2, s_[a], s_[b], s_[c], vs_) ? 1 : 0;
   }
   void corners(size_t a, size_t b, size_t c, uint32_t p[3][2]) const {
     const size_t k[3] = {a, b, c};
@@ -193,102 +215,108 @@ class Remover {
   // A vertex without any such triangle stays (as the ears would decide, after
   // scanning most of its star).
   bool coverable() const {
-    const size_t n = poly_.size();
+    const size_t n = n_;
     for (size_t a = 0; a < n; ++a)
       for (size_t b = a + 1; b < n; ++b)
         for (size_t c = b + 1; c < n; ++c) {
-          if (orient(a, b, c) <= 0 || !holdsV(a, b, c)) continue;
-          uint32_t p[3][2];
-          corners(a, b, c, p);
-          if (test_.pointWithin(p, static_cast<uint32_t>(vx_), static_cast<uint32_t>(vy_))) return true;
+          const int64_t d = orient(a, b, c);
+          if (d > 0 && vSampleIn(a, b, c, d) == 1) return true;
         }
     return false;
   }
-  // Polygon triangle (a, b, c) within E (spec 9.4's test), each triangle
-  // tested once per star. v's own sample, the likeliest to fail, goes first.
-  bool within(size_t a, size_t b, size_t c) {
+  // Polygon triangle (a, b, c), counter-clockwise, within E (spec 9.4's
+  // test), each triangle tested once per star. v's own sample, the likeliest
+  // to fail, goes first.
+  bool within(size_t a, size_t b, size_t c, int64_t d) {
     // The key of the triangle whatever its first corner (positions < 64).
     const size_t lo = std::min({a, b, c});
     const uint32_t key = lo == a ? (a << 12 | b << 6 | c) : lo == b ? (b << 12 | c << 6 | a) : (c << 12 | a << 6 | b);
     for (const uint32_t seen : tested_)
       if ((seen >> 1) == key) return seen & 1;
-    uint32_t p[3][2];
-    corners(a, b, c, p);
-    const bool ok = (!holdsV(a, b, c) || test_.pointWithin(p, static_cast<uint32_t>(vx_), static_cast<uint32_t>(vy_))) &&
-                    test_.triangleWithin(p);
+    bool ok = vSampleIn(a, b, c, d) != 0;
+    if (ok) {
+      uint32_t p[3][2];
+      corners(a, b, c, p);
+      ok = test_.triangleWithin(p);
+    }
     tested_.push_back(key << 1 | (ok ? 1u : 0u));
     return ok;
   }
   // Step 3: the ears of the polygon, each time the first one in polygon order
   // that is convex, holds no other polygon point (on its sides neither) and is
-  // within E. False when none is. ring_ holds polygon positions.
+  // within E. False when none is. ring_ holds polygon positions, made_ the
+  // ears' positions.
   bool clipEars() {
-    const size_t n = poly_.size();
-    ring_.resize(n);
+    const size_t n = n_;
+    size_t m = n;
     for (size_t i = 0; i < n; ++i) ring_[i] = static_cast<uint8_t>(i);
-    made_.clear();
+    made_count_ = 0;
     tested_.clear();
-    while (ring_.size() > 3) {
-      const size_t m = ring_.size();
+    while (m > 3) {
       size_t ear = m;
       for (size_t i = 0; i < m && ear == m; ++i) {
         // The neighbours around the ring without a division (m is not a constant).
         const size_t a = ring_[i == 0 ? m - 1 : i - 1], b = ring_[i], c = ring_[i + 1 == m ? 0 : i + 1];
-        if (orient(a, b, c) <= 0) continue;
+        const int64_t d = orient(a, b, c);
+        if (d <= 0) continue;
         bool empty = true;
         for (size_t j = 0; j < m && empty; ++j) {
           const size_t q = ring_[j];
           if (q != a && q != b && q != c && orient(a, b, q) >= 0 && orient(b, c, q) >= 0 && orient(c, a, q) >= 0)
             empty = false;
         }
-        if (empty && within(a, b, c)) ear = i;
+        if (empty && within(a, b, c, d)) ear = i;
       }
       if (ear == m) return false;
-      made_.push_back({poly_[ring_[ear == 0 ? m - 1 : ear - 1]], poly_[ring_[ear]], poly_[ring_[ear + 1 == m ? 0 : ear + 1]]});
-      ring_.erase(ring_.begin() + static_cast<std::ptrdiff_t>(ear));
+      made_[made_count_++] = {ring_[ear == 0 ? m - 1 : ear - 1], ring_[ear], ring_[ear + 1 == m ? 0 : ear + 1]};
+      for (size_t i = ear; i + 1 < m; ++i) ring_[i] = ring_[i + 1];
+      --m;
     }
-    if (orient(ring_[0], ring_[1], ring_[2]) <= 0 || !within(ring_[0], ring_[1], ring_[2])) return false;
-    made_.push_back({poly_[ring_[0]], poly_[ring_[1]], poly_[ring_[2]]});
+    const int64_t d = orient(ring_[0], ring_[1], ring_[2]);
+    if (d <= 0 || !within(ring_[0], ring_[1], ring_[2], d)) return false;
+    made_[made_count_++] = {ring_[0], ring_[1], ring_[2]};
     return true;
   }
-  // The made triangles take the first n - 2 of the star's slots; the last two die.
+  // The made triangles take the first n - 2 of the star's slots; the last two
+  // die. A made triangle's side between polygon positions i and i + 1 faces
+  // the triangle outside that polygon edge; its other sides are diagonals,
+  // each shared with one other made triangle.
   void replaceStar(uint32_t v) {
-    const size_t n = poly_.size();
-    std::vector<uint32_t>& outer = outer_;  // the corner across polygon edge i -> i + 1
-    outer.resize(n);
+    const size_t n = n_;
+    uint32_t outer[kMaxLink + 1];  // the corner across polygon edge i -> i + 1
     for (size_t i = 0; i < n; ++i) outer[i] = opposite_[star_[i]];
-    auto position = [&](uint32_t u) {
-      return static_cast<size_t>(std::find(poly_.begin(), poly_.end(), u) - poly_.begin());
-    };
-    for (size_t k = 0; k < n; ++k) {
+    for (size_t k = made_count_; k < n; ++k) {
       const uint32_t t = star_[k] / 3;
-      for (int j = 0; j < 3; ++j) {
-        vertex_[3 * t + j] = k < made_.size() ? made_[k][j] : kNone;
-        opposite_[3 * t + j] = kNone;
-      }
+      for (int j = 0; j < 3; ++j) vertex_[3 * t + j] = kNone, opposite_[3 * t + j] = kNone;
     }
-    for (size_t k = 0; k < made_.size(); ++k) {
+    // Diagonals waiting for their twin: (from << 8 | to) of the corner's edge.
+    uint32_t waiting_key[2 * kMaxLink], waiting_corner[2 * kMaxLink];
+    size_t waiting = 0;
+    for (size_t k = 0; k < made_count_; ++k) {
       const uint32_t t = star_[k] / 3;
+      const auto& pos = made_[k];
       for (uint32_t j = 0; j < 3; ++j) {
         const uint32_t c = 3 * t + j;
+        vertex_[c] = poly_[pos[j]];
         corner_of_[vertex_[c]] = c;
-        if (opposite_[c] != kNone) continue;
-        const uint32_t x = vertex_[next(c)], y = vertex_[prev(c)];
-        const size_t px = position(x);
-        if (poly_[px + 1 == n ? 0 : px + 1] == y) {  // a polygon edge: the triangle outside
-          opposite_[c] = outer[px];
-          if (outer[px] != kNone) opposite_[outer[px]] = c;
+      }
+      for (uint32_t j = 0; j < 3; ++j) {
+        const uint32_t c = 3 * t + j;
+        const uint32_t from = pos[j == 2 ? 0 : j + 1], to = pos[j == 0 ? 2 : j - 1];  // the edge c faces
+        if (to == (from + 1 == n ? 0 : from + 1)) {  // a polygon edge: the triangle outside
+          opposite_[c] = outer[from];
+          if (outer[from] != kNone) opposite_[outer[from]] = c;
           continue;
         }
-        for (size_t k2 = k + 1; k2 < made_.size() && opposite_[c] == kNone; ++k2) {  // a diagonal
-          const uint32_t t2 = star_[k2] / 3;
-          for (uint32_t j2 = 0; j2 < 3; ++j2) {
-            const uint32_t c2 = 3 * t2 + j2;
-            if (vertex_[next(c2)] == y && vertex_[prev(c2)] == x) {
-              opposite_[c] = c2;
-              opposite_[c2] = c;
-            }
-          }
+        const uint32_t twin = to << 8 | from;
+        size_t w = 0;
+        while (w < waiting && waiting_key[w] != twin) ++w;
+        if (w < waiting) {
+          opposite_[c] = waiting_corner[w];
+          opposite_[waiting_corner[w]] = c;
+          waiting_key[w] = waiting_key[--waiting], waiting_corner[w] = waiting_corner[waiting];
+        } else {
+          waiting_key[waiting] = from << 8 | to, waiting_corner[waiting++] = c;
         }
       }
     }
@@ -299,10 +327,15 @@ class Remover {
   GridMesh* mesh_;
   size_t max_link_;
   std::vector<uint32_t> vertex_, opposite_, corner_of_;
-  std::vector<uint32_t> poly_, star_, outer_;
-  std::vector<uint8_t> ring_;
-  int64_t x_[kMaxLink + 1], y_[kMaxLink + 1], vx_ = 0, vy_ = 0;  // the polygon's points and v's
-  std::vector<std::array<uint32_t, 3>> made_;
+  // The try's polygon (n_ points from the smallest in (y, x) order), the star's
+  // corners at v (star_[i]: the triangle of polygon edge i -> i + 1), the
+  // points' coordinates and samples, and v's.
+  size_t n_ = 0;
+  uint32_t poly_[kMaxLink + 1], star_[kMaxLink + 1];
+  int64_t x_[kMaxLink + 1], y_[kMaxLink + 1], s_[kMaxLink + 1], vx_ = 0, vy_ = 0, vs_ = 0;
+  uint8_t ring_[kMaxLink + 1];
+  std::array<uint8_t, 3> made_[kMaxLink];  // the ears, as polygon positions
+  size_t made_count_ = 0;
   std::vector<uint32_t> tested_;  // triangle key << 1 | within
 };
 
@@ -362,13 +395,18 @@ void removeVertices(const ErrorTest& test, GridMesh* mesh, const RemovalRules& r
   do {
     ++report->passes;
     removed_in_pass = 0;
-    for (uint32_t v : order) {
+    for (size_t k = 0; k < order.size(); ++k) {
+      // The stars ahead, in two steps: a vertex's corner, then its triangle
+      // (the sweep's loads are scattered over the corner table).
+      if (k + 16 < order.size()) remover.prefetchCorner(order[k + 16]);
+      if (k + 8 < order.size()) remover.prefetchStar(order[k + 8]);
+      const uint32_t v = order[k];
       if (!remover.present(v) || !changed[v]) continue;
       changed[v] = 0;
       if (rules.bent_stay && bent(test, mesh->points[v][0], mesh->points[v][1])) continue;
       if (!remover.tryRemove(v)) continue;
       ++removed_in_pass;
-      for (uint32_t u : remover.link()) changed[u] = 1;
+      for (size_t i = 0; i < remover.linkSize(); ++i) changed[remover.link()[i]] = 1;
     }
     report->removed += removed_in_pass;
   } while (removed_in_pass > 0 && report->passes != rules.max_passes);
