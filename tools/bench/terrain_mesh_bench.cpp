@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string e; std::getline(ss, e, ',');) errors.push_back(e);
     } else if (a == "--quick") quick = true;
+    else if (a == "--rounds" && i + 1 < argc && std::atoi(argv[i + 1]) > 0) rounds = std::atoi(argv[++i]);
     else if (a == "--only" && i + 1 < argc && (std::string(argv[i + 1]) == "insertion" ||
                                                std::string(argv[i + 1]) == "quadtree")) only = argv[++i];
     else {
