@@ -118,13 +118,56 @@ bool ErrorTest::scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold
   return true;
 }
 
+uint32_t ErrorTest::shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const {
+  if (shape_start_.empty()) shape_start_.assign(size_t{kShapeSide} * kShapeSide * kShapeSide * kShapeSide, 0);
+  const size_t key = static_cast<size_t>(
+      ((dy2 + kShapeReach) * kShapeSide + (dx2 + kShapeReach)) * kShapeSide * kShapeSide +
+      (dy1 + kShapeReach) * kShapeSide + (dx1 + kShapeReach));
+  if (shape_start_[key] != 0) return shape_start_[key] - 1;
+  const uint32_t start = static_cast<uint32_t>(shape_points_.size());
+  // The edge functions of scanTriangle: w_0 = a_0 x + b_0 y + d, w_k = a_k x + b_k y.
+  const int64_t a0 = dy1 - dy2, b0 = dx2 - dx1;
+  const int64_t ylo = std::min<int64_t>({0, dy1, dy2}), yhi = std::max<int64_t>({0, dy1, dy2});
+  const int64_t xlo = std::min<int64_t>({0, dx1, dx2}), xhi = std::max<int64_t>({0, dx1, dx2});
+  const int64_t width = field_.size[0];
+  for (int64_t y = ylo; y <= yhi; ++y)
+    for (int64_t x = xlo; x <= xhi; ++x) {
+      const int64_t w0 = a0 * x + b0 * y + d, w1 = dy2 * x - dx2 * y, w2 = dx1 * y - dy1 * x;
+      if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+      if (w0 == d || w1 == d || w2 == d) continue;  // a vertex: exact
+      shape_points_.push_back({y * width + x, static_cast<int32_t>(w1), static_cast<int32_t>(w2)});
+    }
+  shape_points_.push_back({0, -1, -1});
+  shape_start_[key] = start + 1;
+  return start;
+}
+
+bool ErrorTest::smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2,
+                                    int64_t d) const {
+  const uint32_t start = shapePoints(dx1, dy1, dx2, dy2, d);
+  const int32_t* base = field_.values.data() + (y0 * int64_t{field_.size[0]} + x0);
+  const int64_t width = field_.size[0];
+  // As scanTriangle<int64_t>: every term relative to the first vertex's sample.
+  const int64_t v0 = base[0], u1 = base[dy1 * width + dx1] - v0, u2 = base[dy2 * width + dx2] - v0;
+  const int64_t threshold = thresholdFor(d);
+  for (const ShapePoint* point = &shape_points_[start]; point->w1 >= 0; ++point) {
+    const int64_t diff = (base[point->offset] - v0) * d - (u1 * point->w1 + u2 * point->w2);
+    if (diff > threshold || diff < -threshold) return false;
+  }
+  return true;
+}
+
 bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
   int64_t q[3][2];
   for (int k = 0; k < 3; ++k) q[k][0] = p[k][0], q[k][1] = p[k][1];
-  const int64_t d = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
+  const int64_t dx1 = q[1][0] - q[0][0], dy1 = q[1][1] - q[0][1], dx2 = q[2][0] - q[0][0], dy2 = q[2][1] - q[0][1];
+  const int64_t d = dx1 * dy2 - dy1 * dx2;
+  const bool narrow = static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58);
+  const auto near = [](int64_t t) { return t >= -kShapeReach && t <= kShapeReach; };
+  if (narrow && d > 0 && near(dx1) && near(dy1) && near(dx2) && near(dy2))
+    return smallTriangleWithin(q[0][0], q[0][1], dx1, dy1, dx2, dy2, d);
   const int64_t threshold = thresholdFor(d);
-  if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58))
-    return scanTriangle<int64_t>(q, d, threshold);
+  if (narrow) return scanTriangle<int64_t>(q, d, threshold);
   return scanTriangle<__int128>(q, d, threshold);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "mrsv/grid_mesh.h"
 
@@ -42,6 +43,22 @@ class ErrorTest {
   const ErrorBound& bound() const { return bound_; }
 
  private:
+  // A small triangle (its other vertices within kShapeReach samples of the
+  // first along each axis) is tested through its shape's grid points: the
+  // points of the closed triangle other than its vertices, each with its
+  // offset from the first vertex in the field and its edge functions w1, w2,
+  // listed the first time the shape is tested. Most triangles of the tree's
+  // fine leaves and of the removal pass hold a handful of samples, which a
+  // scan of their box would cost several times more to find.
+  static constexpr int kShapeReach = 7;
+  static constexpr int kShapeSide = 2 * kShapeReach + 1;
+  struct ShapePoint {
+    int64_t offset;  // in the field, from the first vertex
+    int32_t w1, w2;
+  };
+  bool smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
+  uint32_t shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
+
   template <class Acc>
   bool scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold) const;
   // floor(E * d). |s - m| <= num / den with m = n / d is |s d - n| <= num d /
@@ -58,6 +75,12 @@ class ErrorTest {
   const SampleField& field_;
   ErrorBound bound_;
   uint64_t range_ = 0;  // max - min of the samples
+  // Per shape (dx1, dy1, dx2, dy2): where its points start in shape_points_
+  // (kShapeSide^4 entries, 0 until listed; an entry is the start + 1), each
+  // list ending with an entry whose w1 is -1. Filled as shapes are met: the
+  // test is const, and an ErrorTest serves one thread.
+  mutable std::vector<uint32_t> shape_start_;
+  mutable std::vector<ShapePoint> shape_points_;
 };
 
 }  // namespace mrsv::quadtree

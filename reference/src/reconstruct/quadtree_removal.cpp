@@ -262,7 +262,8 @@ class Remover {
         bool empty = true;
         for (size_t j = 0; j < m && empty; ++j) {
           const size_t q = ring_[j];
-          if (q != a && q != b && q != c && orient(a, b, q) >= 0 && orient(b, c, q) >= 0 && orient(c, a, q) >= 0)
+          // The diagonal c -> a first: most points lie beyond it.
+          if (q != a && q != b && q != c && orient(c, a, q) >= 0 && orient(a, b, q) >= 0 && orient(b, c, q) >= 0)
             empty = false;
         }
         if (empty && within(a, b, c, d)) ear = i;
