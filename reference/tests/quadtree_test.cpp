@@ -259,6 +259,64 @@ TEST(Quadtree, QuadtreePassLeavesLargeLinksAndBentPoints) {
   }
 }
 
+// spec 9.4's triangle test, as ErrorTest makes it (a small triangle through
+// its shape's list of grid points, a larger one by a scan of its box or of its
+// rows), against every grid point of the box tested exactly in 128 bits: on a
+// real terrain window, random counter-clockwise triangles from 1 to 40
+// samples across (fixed seed), integer and fractional bounds, both entry
+// points.
+TEST(Quadtree, TriangleTestMatchesEveryPointChecked) {
+  const SampleField f = terrainWindow("st_helens", 100, 150, 64, 64);
+  ASSERT_FALSE(f.values.empty());
+  uint64_t state = 12345;
+  auto next = [&](uint32_t n) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<uint32_t>((state >> 33) % n);
+  };
+  for (const ErrorBound bound : {ErrorBound{1, 1}, ErrorBound{5, 1}, ErrorBound{22, 3}, ErrorBound{40, 1}}) {
+    const quadtree::ErrorTest test(f, bound);
+    int within = 0, tried = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const uint32_t reach = k % 2 ? 8 : 41;  // half of them small triangles
+      const uint32_t x0 = next(64 - reach + 1), y0 = next(64 - reach + 1);
+      uint32_t p[3][2] = {{x0 + next(reach), y0 + next(reach)}, {x0 + next(reach), y0 + next(reach)},
+                          {x0 + next(reach), y0 + next(reach)}};
+      auto orient = [&](int a, int b, int c) {
+        return (int64_t{p[b][0]} - p[a][0]) * (int64_t{p[c][1]} - p[a][1]) -
+               (int64_t{p[b][1]} - p[a][1]) * (int64_t{p[c][0]} - p[a][0]);
+      };
+      if (orient(0, 1, 2) == 0) continue;
+      if (orient(0, 1, 2) < 0) std::swap(p[1], p[2]);
+      const int64_t d = orient(0, 1, 2);
+      bool expected = true;
+      for (uint32_t y = 0; y < 64 && expected; ++y)
+        for (uint32_t x = 0; x < 64 && expected; ++x) {
+          const int64_t w0 = (int64_t{p[2][0]} - p[1][0]) * (int64_t{y} - p[1][1]) -
+                             (int64_t{p[2][1]} - p[1][1]) * (int64_t{x} - p[1][0]);
+          const int64_t w1 = (int64_t{p[0][0]} - p[2][0]) * (int64_t{y} - p[2][1]) -
+                             (int64_t{p[0][1]} - p[2][1]) * (int64_t{x} - p[2][0]);
+          const int64_t w2 = d - w0 - w1;
+          if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+          // |s - m| <= num / den with m d = s0 w0 + s1 w1 + s2 w2.
+          const __int128 diff = static_cast<__int128>(f.at(x, y)) * d - (static_cast<__int128>(f.at(p[0][0], p[0][1])) * w0 +
+                                static_cast<__int128>(f.at(p[1][0], p[1][1])) * w1 +
+                                static_cast<__int128>(f.at(p[2][0], p[2][1])) * w2);
+          const __int128 size = diff < 0 ? -diff : diff;
+          expected = size * bound.den <= static_cast<__int128>(bound.num) * d;
+        }
+      ++tried;
+      within += expected;
+      ASSERT_EQ(test.triangleWithin(p), expected) << "triangle " << k;
+      const int64_t xs[3] = {p[0][0], p[1][0], p[2][0]}, ys[3] = {p[0][1], p[1][1], p[2][1]};
+      const int64_t ss[3] = {f.at(p[0][0], p[0][1]), f.at(p[1][0], p[1][1]), f.at(p[2][0], p[2][1])};
+      ASSERT_EQ(test.triangleWithin(xs, ys, ss, d), expected) << "triangle " << k;
+    }
+    // Both outcomes are exercised at every bound (at E = 1, 158 of 3,840 within).
+    EXPECT_GT(within, 100) << bound.num << "/" << bound.den;
+    EXPECT_LT(within, tried - 100) << bound.num << "/" << bound.den;
+  }
+}
+
 // spec 9.7: a vertex whose link has more than 64 points stays. A flat n x n
 // grid meshed as a fan from its centre to every border point: the centre's
 // link is the border, 4 (n - 1) points, and every ear is within E = 0.
