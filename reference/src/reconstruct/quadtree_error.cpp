@@ -142,12 +142,13 @@ uint32_t ErrorTest::shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t d
   return start;
 }
 
-// As scanTriangle<int64_t>: every term relative to the first vertex's sample
-// v0 (u1, u2: the other two vertices' samples minus v0).
 bool ErrorTest::smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2,
-                                    int64_t d, int64_t v0, int64_t u1, int64_t u2) const {
+                                    int64_t d) const {
   const uint32_t start = shapePoints(dx1, dy1, dx2, dy2, d);
   const int32_t* base = field_.values.data() + (y0 * int64_t{field_.size[0]} + x0);
+  const int64_t width = field_.size[0];
+  // As scanTriangle<int64_t>: every term relative to the first vertex's sample.
+  const int64_t v0 = base[0], u1 = base[dy1 * width + dx1] - v0, u2 = base[dy2 * width + dx2] - v0;
   const int64_t threshold = thresholdFor(d);
   for (const ShapePoint* point = &shape_points_[start]; point->w1 >= 0; ++point) {
     const int64_t diff = (base[point->offset] - v0) * d - (u1 * point->w1 + u2 * point->w2);
@@ -161,23 +162,13 @@ bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
   for (int k = 0; k < 3; ++k) q[k][0] = p[k][0], q[k][1] = p[k][1];
   const int64_t dx1 = q[1][0] - q[0][0], dy1 = q[1][1] - q[0][1], dx2 = q[2][0] - q[0][0], dy2 = q[2][1] - q[0][1];
   const int64_t d = dx1 * dy2 - dy1 * dx2;
-  if (small(dx1, dy1, dx2, dy2, d)) {
-    const int64_t v0 = field_.at(p[0][0], p[0][1]);
-    return smallTriangleWithin(q[0][0], q[0][1], dx1, dy1, dx2, dy2, d, v0, field_.at(p[1][0], p[1][1]) - v0,
-                               field_.at(p[2][0], p[2][1]) - v0);
-  }
   const bool narrow = static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58);
+  const auto near = [](int64_t t) { return t >= -kShapeReach && t <= kShapeReach; };
+  if (narrow && d > 0 && near(dx1) && near(dy1) && near(dx2) && near(dy2))
+    return smallTriangleWithin(q[0][0], q[0][1], dx1, dy1, dx2, dy2, d);
   const int64_t threshold = thresholdFor(d);
   if (narrow) return scanTriangle<int64_t>(q, d, threshold);
   return scanTriangle<__int128>(q, d, threshold);
-}
-
-bool ErrorTest::triangleWithin(const int64_t x[3], const int64_t y[3], const int64_t s[3], int64_t d) const {
-  const int64_t dx1 = x[1] - x[0], dy1 = y[1] - y[0], dx2 = x[2] - x[0], dy2 = y[2] - y[0];
-  if (small(dx1, dy1, dx2, dy2, d)) return smallTriangleWithin(x[0], y[0], dx1, dy1, dx2, dy2, d, s[0], s[1] - s[0], s[2] - s[0]);
-  uint32_t p[3][2];
-  for (int k = 0; k < 3; ++k) p[k][0] = static_cast<uint32_t>(x[k]), p[k][1] = static_cast<uint32_t>(y[k]);
-  return triangleWithin(p);
 }
 
 bool ErrorTest::sampleWithinWide(int64_t d, int64_t w1, int64_t w2, int64_t s0, int64_t s1, int64_t s2,

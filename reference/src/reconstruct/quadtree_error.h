@@ -19,9 +19,6 @@ class ErrorTest {
   // true when every sample in the closed triangle is within the bound of the
   // plane through the three vertices' samples.
   bool triangleWithin(const uint32_t p[3][2]) const;
-  // The same for a caller that has the vertices' coordinates x, y, samples s
-  // and d = orient(p0, p1, p2) > 0 at hand (the removal pass's ears).
-  bool triangleWithin(const int64_t x[3], const int64_t y[3], const int64_t s[3], int64_t d) const;
 
   // The test of triangleWithin for one sample, from the parts a caller has:
   // s is the sample at a point inside the closed counter-clockwise triangle
@@ -59,13 +56,7 @@ class ErrorTest {
     int64_t offset;  // in the field, from the first vertex
     int32_t w1, w2;
   };
-  bool smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d,
-                           int64_t v0, int64_t u1, int64_t u2) const;
-  bool small(int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const {
-    const auto near = [](int64_t t) { return t >= -kShapeReach && t <= kShapeReach; };
-    return d > 0 && near(dx1) && near(dy1) && near(dx2) && near(dy2) &&
-           static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58);
-  }
+  bool smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
   uint32_t shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
 
   template <class Acc>

@@ -205,6 +205,10 @@ class Remover {
     if (w0 < 0 || w1 < 0 || w2 < 0) return -1;
     return test_.sampleWithin(d, w1, w2, s_[a], s_[b], s_[c], vs_) ? 1 : 0;
   }
+  void corners(size_t a, size_t b, size_t c, uint32_t p[3][2]) const {
+    const size_t k[3] = {a, b, c};
+    for (int j = 0; j < 3; ++j) p[j][0] = static_cast<uint32_t>(x_[k[j]]), p[j][1] = static_cast<uint32_t>(y_[k[j]]);
+  }
   // A necessary condition for the removal, cheap beside the ears: the
   // triangles the ears make cover v's point, so one of them, a counter-
   // clockwise triangle of polygon points holding it, has v's sample within E.
@@ -231,8 +235,9 @@ class Remover {
       if ((seen >> 1) == key) return seen & 1;
     bool ok = vSampleIn(a, b, c, d) != 0;
     if (ok) {
-      const int64_t x[3] = {x_[a], x_[b], x_[c]}, y[3] = {y_[a], y_[b], y_[c]}, sample[3] = {s_[a], s_[b], s_[c]};
-      ok = test_.triangleWithin(x, y, sample, d);
+      uint32_t p[3][2];
+      corners(a, b, c, p);
+      ok = test_.triangleWithin(p);
     }
     tested_.push_back(key << 1 | (ok ? 1u : 0u));
     return ok;
