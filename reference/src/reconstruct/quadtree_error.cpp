@@ -145,8 +145,8 @@ uint32_t ErrorTest::shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t d
 bool ErrorTest::smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2,
                                     int64_t d) const {
   const uint32_t start = shapePoints(dx1, dy1, dx2, dy2, d);
-  const int32_t* base = field_.values.data() + (y0 * int64_t{field_.size[0]} + x0);
   const int64_t width = field_.size[0];
+  const int32_t* base = field_.values.data() + (y0 * width + x0);
   // As scanTriangle<int64_t>: every term relative to the first vertex's sample.
   const int64_t v0 = base[0], u1 = base[dy1 * width + dx1] - v0, u2 = base[dy2 * width + dx2] - v0;
   const int64_t threshold = thresholdFor(d);
@@ -162,12 +162,12 @@ bool ErrorTest::triangleWithin(const uint32_t p[3][2]) const {
   for (int k = 0; k < 3; ++k) q[k][0] = p[k][0], q[k][1] = p[k][1];
   const int64_t dx1 = q[1][0] - q[0][0], dy1 = q[1][1] - q[0][1], dx2 = q[2][0] - q[0][0], dy2 = q[2][1] - q[0][1];
   const int64_t d = dx1 * dy2 - dy1 * dx2;
-  const bool narrow = static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58);
+  const bool fits = narrow(d);
   const auto near = [](int64_t t) { return t >= -kShapeReach && t <= kShapeReach; };
-  if (narrow && d > 0 && near(dx1) && near(dy1) && near(dx2) && near(dy2))
+  if (fits && d > 0 && near(dx1) && near(dy1) && near(dx2) && near(dy2))
     return smallTriangleWithin(q[0][0], q[0][1], dx1, dy1, dx2, dy2, d);
   const int64_t threshold = thresholdFor(d);
-  if (narrow) return scanTriangle<int64_t>(q, d, threshold);
+  if (fits) return scanTriangle<int64_t>(q, d, threshold);
   return scanTriangle<__int128>(q, d, threshold);
 }
 

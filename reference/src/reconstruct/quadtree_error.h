@@ -26,7 +26,7 @@ class ErrorTest {
   // w2 = orient(p0, p1, point); s0, s1, s2 are the vertices' samples. True
   // when s is within the bound of the plane through the three.
   bool sampleWithin(int64_t d, int64_t w1, int64_t w2, int64_t s0, int64_t s1, int64_t s2, int64_t s) const {
-    if (static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58)) {
+    if (narrow(d)) {
       const int64_t diff = (s - s0) * d - ((s1 - s0) * w1 + (s2 - s0) * w2);
       const int64_t threshold = thresholdFor(d);
       return diff <= threshold && diff >= -threshold;
@@ -59,6 +59,11 @@ class ErrorTest {
   bool smallTriangleWithin(int64_t x0, int64_t y0, int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
   uint32_t shapePoints(int64_t dx1, int64_t dy1, int64_t dx2, int64_t dy2, int64_t d) const;
 
+  // Every term of a triangle's test with twice the area d fits in 64 bits
+  // relative to its first vertex's sample (spec 9.4 bounds each by 12 range d).
+  bool narrow(int64_t d) const {
+    return static_cast<unsigned __int128>(range_) * static_cast<uint64_t>(d) < (uint64_t{1} << 58);
+  }
   template <class Acc>
   bool scanTriangle(const int64_t q[3][2], int64_t d, int64_t threshold) const;
   // floor(E * d). |s - m| <= num / den with m = n / d is |s d - n| <= num d /
