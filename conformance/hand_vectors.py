@@ -20,9 +20,9 @@ def build_hand(v, H, chunk, ghdr, meta, canonical, MEND):
 
 # --- grids ------------------------------------------------------------------
 
-def whdr(order=1, levels=(0, 0, 0), entropy_mode=1, frac_bits=0, flags=0, reserved=0, offset=0, scale=0):
+def whdr(order=1, levels=(0, 0, 0), entropy_mode=1, frac_bits=0, flags=0, precinct_log2=0, offset=0, scale=0):
     """spec 5.2 wavelet_header(); `offset` and `scale` are the raw u64 fields."""
-    return struct.pack("<B3BBBBBQQ", order, *levels, entropy_mode, frac_bits, flags, reserved, offset, scale)
+    return struct.pack("<B3BBBBBQQ", order, *levels, entropy_mode, frac_bits, flags, precinct_log2, offset, scale)
 
 
 def gbnd(index, coded, step=1, flags=0, reserved=0):
@@ -78,10 +78,12 @@ def grid_vectors(v, H, chunk, ghdr, meta, canonical, MEND):
             "5.2", "linear B-splines: x has a plan, y (5 samples, 1 level: 2 intervals, below 4) has none")
     wavelet("whdr_residual_float", [4], "float32", whdr(flags=2, scale=struct.unpack("<Q", struct.pack("<d", 1.0))[0]),
             14, 204, "bad_wavelet_header", "5.2", "has_residual with float32 samples")
-    wavelet("whdr_reserved", [4], "int32", whdr(reserved=1), 15, 105, "reserved_nonzero", "5.2",
-            "the reserved byte of WHDR is 1")
-    wavelet("whdr_order_before_reserved_order", [4], "int32", whdr(order=6, reserved=1), 8, 204, "bad_wavelet_header",
-            "5.2, A.2", "order 6 and a reserved byte: order is checked first")
+    wavelet("whdr_precinct_3", [4], "int32", whdr(precinct_log2=3), 15, 204, "bad_wavelet_header", "5.2",
+            "precinct_log2 3 (0, or 4 to 24)")
+    wavelet("whdr_precinct_25", [4], "int32", whdr(precinct_log2=25), 15, 204, "bad_wavelet_header", "5.2",
+            "precinct_log2 25 (0, or 4 to 24)")
+    wavelet("whdr_order_before_precinct_order", [4], "int32", whdr(order=6, precinct_log2=1), 8, 204,
+            "bad_wavelet_header", "5.2, A.2", "order 6 and precinct_log2 1: order is checked first")
 
     # -- a hand-coded 1-D int32 grid, levels 0: one band, the samples themselves --
     g4 = chunk("GHDR", ghdr("int32", [4], coding=1))

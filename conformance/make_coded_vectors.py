@@ -275,6 +275,103 @@ def build(g):
     g.valid("prefix_linear_half_bands", frame(linear[:linear_bands[len(linear_bands) // 2] + 1]), "2.5.1, 4.5, 5.1",
             "a prefix of a linear B-spline stream, cut after half its bands")
 
+    # Precincts (5.7.6): every array (bands, mask, residual) in blocks coded apart.
+    g.valid("terrain_precinct16_lossless",
+            g.encode(helens, "int16", h2, ["--precinct", "16", "--lossless", "--bound-route", "residual"]),
+            "5.7.6", "a terrain window in precincts of 16: bands and residual in blocks, lossless",
+            expected=canonical("int16", h2, helens))
+    g.valid("terrain_precinct16_weighted_lossless",
+            g.encode(helens, "int16", h2, ["--precinct", "16", "--lossless", "--bound-route", "predictive",
+                                           "--prediction", "weighted"]),
+            "5.7.5, 5.7.6", "the samples in blocks of 16 x 16, each with weighted prediction of its own",
+            expected=canonical("int16", h2, helens))
+    g.valid("terrain_precinct16_nodata_neighbour",
+            g.encode(fuji, "int16", [53, 47], ["--precinct", "16", "--max-error", "2", "--bound-route",
+                                               "predictive", "--prediction", "neighbour"], nodata=-32768),
+            "5.7.4, 5.7.6", "SRTM window with voids: mask in blocks, samples with step 5 predicted block by block")
+    g.valid("terrain_precinct32_nodata_max_error4",
+            g.encode(fuji, "int16", [53, 47], ["--precinct", "32", "--max-error", "4", "--bound-route", "residual"],
+                     nodata=-32768),
+            "5.5, 5.7.6", "SRTM window with voids, precincts of 32: mask, bands and residual in blocks; "
+            "coarse levels in blocks of 16")
+    g.valid("volume_precinct16_rate",
+            g.encode(head, "uint8", h3, ["--precinct", "16", "--progressive", "--bits-per-sample", "1.5"]),
+            "5.7.6", "a CT block (3-D uint8) in precincts of 16^3, about 1.5 bits per sample")
+    g.valid("volume_precinct16_baseline_rate",
+            g.encode(head, "uint8", h3, ["--precinct", "16", "--entropy", "baseline", "--progressive",
+                                         "--bits-per-sample", "1.5"]),
+            "5.7.6, 5.10", "the same in the baseline entropy mode")
+    g.valid("terrain_precinct16_step",
+            g.encode(helens, "int16", h2, ["--precinct", "16", "--step", "40"]),
+            "5.7.6", "a terrain window, precincts of 16, step 40: blocks of all zeros have length 0")
+    pre = parse_chunks(g.encode(helens, "int16", h2, ["--precinct", "16", "--max-error", "1",
+                                                      "--bound-route", "residual"]))
+    pre_bands = [i for i, (t, _) in enumerate(pre) if t == "GBND"]
+    g.valid("precinct_prefix_half_bands", frame(pre[:pre_bands[len(pre_bands) // 2] + 1]), "2.5.1, 5.7.6",
+            "a prefix of a stream in precincts of 16, cut after half its bands")
+
+    def block_table(payload):
+        """(n, lengths) of a blocked array: the first n whose lengths add up to the rest."""
+        for n in range(1, len(payload) // 4 + 1):
+            lengths = struct.unpack_from("<%dI" % n, payload, 0)
+            if sum(lengths) == len(payload) - 4 * n:
+                return n, list(lengths)
+        raise ValueError("not a blocked array")
+
+    def blocked(name, chunks_in, index, header, edit, err_at, description, clause="5.7.6"):
+        """Edits the blocked array after `header` bytes of chunk `index`'s payload;
+        edit(n, lengths, data) returns the new array and the error's offset in it."""
+        c = list(chunks_in)
+        t, p = c[index]
+        n, lengths = block_table(p[header:])
+        array, at = edit(n, lengths, bytearray(p[header:]))
+        c[index] = (t, p[:header] + bytes(array))
+        g.invalid(name, c, 206, "bad_entropy_payload", offset_of(c, index) + 8 + header + at, clause, description)
+
+    def first_block(n, lengths):
+        k = next(i for i, v in enumerate(lengths) if v > 0)
+        return k, 4 * n + sum(lengths[:k])
+
+    def short_table(n, lengths, a):
+        return a[:4 * n - 2], 0
+
+    def sum_off(n, lengths, a):
+        struct.pack_into("<I", a, 0, lengths[0] + 1)
+        return a, 0
+
+    def block_first_byte(n, lengths, a):
+        _, at = first_block(n, lengths)
+        a[at] = 1
+        return a, at
+
+    def block_truncated(n, lengths, a):
+        k, at = first_block(n, lengths)
+        struct.pack_into("<I", a, 4 * k, lengths[k] - 1)
+        del a[at + lengths[k] - 1]
+        return a, at
+
+    def block_extra_byte(n, lengths, a):
+        k, at = first_block(n, lengths)
+        struct.pack_into("<I", a, 4 * k, lengths[k] + 1)
+        a.insert(at + lengths[k], 0x55)
+        return a, at
+
+    pb = [i for i in pre_bands if len(pre[i][1]) > 12][-1]  # the finest band with coded data
+    blocked("precinct_table_short", pre, pb, 12, short_table, 0,
+            "a band's coded data ends inside its table of block lengths")
+    blocked("precinct_lengths_sum", pre, pb, 12, sum_off, 0,
+            "the first block length is one more than its bytes: the lengths do not add up")
+    blocked("precinct_block_first_byte", pre, pb, 12, block_first_byte, 0,
+            "the first coded block of a band does not start with 0")
+    blocked("precinct_block_truncated", pre, pb, 12, block_truncated, 0,
+            "the first coded block of a band one byte short (its length too)")
+    pmask = parse_chunks(g.encode(fuji, "int16", [53, 47], ["--precinct", "16", "--max-error", "4",
+                                                            "--bound-route", "residual"], nodata=-32768))
+    blocked("precinct_mask_lengths_sum", pmask, find(pmask, "GMSK"), 0, sum_off, 0,
+            "GMSK in blocks whose lengths do not add up", clause="5.5, 5.7.6")
+    blocked("precinct_residual_block_extra_byte", pmask, find(pmask, "GRES"), 4, block_extra_byte, 0,
+            "a block of GRES with one byte left over (its length too)", clause="5.5, 5.7.6")
+
     # --- invalid: wavelet header (5.2) -----------------------------------------
     w = find(chunks, "WHDR")
     wpos = offset_of(chunks, w) + 8

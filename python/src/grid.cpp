@@ -237,7 +237,7 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
                 const std::optional<double>& keep, bool progressive, const std::string& bound_route,
                 const std::string& prediction, const py::object& roi, double roi_falloff, double roi_gain,
                 const py::object& spacing, const py::object& origin, const py::object& metadata_entries,
-                const py::object& tile, const py::object& threads) {
+                const py::object& tile, const py::object& threads, const py::object& precinct) {
   py::array samples;
   GridHeader header = headerOf(array, &samples);
   std::string out = outputPath(path);
@@ -309,6 +309,16 @@ py::dict encode(const py::object& array, const py::object& path, const py::objec
     if (w.has_roi) throw py::value_error("tile= does not take roi= (no region of interest with tiles in this version)");
     for (int a = 0; a < 3; ++a)
       tiled.tile_size[a] = a >= header.num_dims ? 1 : tiles[std::min<size_t>(a, tiles.size() - 1)];
+  }
+  if (!precinct.is_none()) {  // as 'mrsv encode --precinct' (spec 5.7.6)
+    if (coding == "stored") throw py::value_error("precinct= needs coding='wavelet'");
+    if (!tiles.empty()) throw py::value_error("precinct= and tile= are two ways to cut a grid; give one");
+    const long long n = py::cast<long long>(precinct);
+    for (int p = kMinPrecinctLog2; p <= kMaxPrecinctLog2; ++p)
+      if (n == (1ll << p)) w.precinct_log2 = p;
+    if (w.precinct_log2 == 0)
+      throw py::value_error("precinct= must be a power of two from " + std::to_string(1 << kMinPrecinctLog2) +
+                            " to " + std::to_string(1 << kMaxPrecinctLog2));
   }
   Metadata metadata;
   if (!spacing.is_none()) metadata.set("spacing", numberList(spacing, "spacing", header.num_dims));
@@ -476,7 +486,7 @@ void registerGrid(py::module_& m) {
         py::arg("bound_route") = "auto", py::arg("prediction") = "auto", py::arg("roi") = py::none(),
         py::arg("roi_falloff") = 16.0, py::arg("roi_gain") = 8.0, py::arg("spacing") = py::none(),
         py::arg("origin") = py::none(), py::arg("metadata") = py::none(), py::arg("tile") = py::none(),
-        py::arg("threads") = py::none(),
+        py::arg("threads") = py::none(), py::arg("precinct") = py::none(),
         R"doc(Encode a grid of samples into an MRSV file (as 'mrsv encode').
 
 array: 1 to 3 dimensions, numpy C order (x,), (y, x) or (z, y, x): the last
@@ -499,6 +509,10 @@ tile: a tiled stream (spec 11, as 'mrsv encode --tile'): an int for every
   reads only the tiles a box touches. Needs coding='wavelet'; not with roi.
   An error bound holds on every sample; a rate or PSNR target for the whole
   grid (one step for all tiles).
+precinct: every band coded in blocks apart, each within a precinct of this
+  many samples per axis (a power of two, 16 to 2^24; spec 5.7.6, as 'mrsv
+  encode --precinct'): one transform of the whole grid, so a lossy stream
+  loses about half what tiles lose. Not with tile=.
 threads: tiles coded at once (default: one per core); the stream is the
   same whatever the count.
 Returns a dict: bytes, bits_per_sample, psnr, max_abs_error, levels (tiled:

@@ -56,6 +56,21 @@ def test_tiled_encode_is_the_cli_stream(st_helens, tmp_path):
     assert info["tiles_total"] == 3 * 4 and np.abs(samples.astype(int) - st_helens).max() <= 3
 
 
+def test_precinct_encode_is_the_cli_stream(st_helens, tmp_path):
+    """Precincts (spec 5.7.6): the same bytes as 'mrsv encode --precinct 32',
+    lossless; a wrong size is a ValueError."""
+    raw = tmp_path / "dem.raw"
+    st_helens.astype("<i2").tofile(raw)
+    run("encode", "--quiet", "--dims", "128,128", "--type", "int16", "--precinct", "32", "--lossless",
+        raw, tmp_path / "cli.mrsv")
+    mrsv.encode(st_helens, tmp_path / "py.mrsv", precinct=32, lossless=True)
+    assert (tmp_path / "py.mrsv").read_bytes() == (tmp_path / "cli.mrsv").read_bytes()
+    samples, _ = mrsv.decode(tmp_path / "py.mrsv")
+    assert np.array_equal(samples, st_helens)
+    with pytest.raises(ValueError, match="power of two"):
+        mrsv.encode(st_helens, tmp_path / "bad.mrsv", precinct=48)
+
+
 @pytest.mark.parametrize("box", [((10, 20), (75, 50)), ((32, 0), (64, 32)), ((0, 0), (128, 128)), ((127, 5), (128, 6))])
 def test_region_is_the_crop_2d(box, tiled_terrain, st_helens):
     (x0, y0), (x1, y1) = box

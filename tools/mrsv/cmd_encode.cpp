@@ -91,6 +91,11 @@ const char kHelp[] =
     "                        box touches. 256 (2-D) or 64 (3-D) is a good size. A rate or PSNR\n"
     "                        target holds for the whole grid (one step for all tiles), an\n"
     "                        error bound for every sample. Not with --roi\n"
+    "  --precinct N          code every band in blocks apart, each within a precinct of N\n"
+    "                        samples per axis (a power of two, 16 to 2^24; spec 5.7.6): one\n"
+    "                        transform of the whole grid, so that lossy coding loses less than\n"
+    "                        with tiles, and a box is decoded from the blocks that reach it.\n"
+    "                        256 (2-D) or 64 (3-D) is a good size. Not with --tile\n"
     "  --out-of-core         with --tile and a raw IN: read IN a row of tiles at a time and\n"
     "                        keep the coded tiles in a temporary file, so that the memory is\n"
     "                        a row of tiles, not the grid; the same stream as without it.\n"
@@ -161,7 +166,7 @@ int runEncode(int argc, char** argv) {
   if (!args.parse(argc, argv,
                   {{"dims", "type", "endian", "band", "nodata", "coding", "order", "levels", "max-error",
                     "bits-per-sample", "psnr", "step", "keep", "roi", "roi-falloff", "roi-gain", "bound-route", "entropy",
-                    "wavelet", "prediction", "tile", "threads"},
+                    "wavelet", "prediction", "tile", "precinct", "threads"},
                    {"quiet", "help", "lossless", "progressive", "out-of-core"},
                    {"meta"}},
                   &error))
@@ -293,6 +298,19 @@ int runEncode(int argc, char** argv) {
   if (coding == "stored" && (args.has("order") || args.has("levels") || args.has("max-error") ||
                              args.has("bits-per-sample") || args.has("psnr") || args.has("step")))
     return fail(cmd, "--coding stored takes no rate, quality or wavelet option", kExitUsage);
+  if (args.has("precinct")) {
+    if (coding == "stored") return fail(cmd, "--precinct needs --coding wavelet", kExitUsage);
+    if (args.has("tile")) return fail(cmd, "--precinct and --tile are two ways to cut a grid; give one", kExitUsage);
+    const std::string& text = args.value("precinct");
+    int log2 = -1;
+    for (int p = kMinPrecinctLog2; p <= kMaxPrecinctLog2; ++p)
+      if (text == std::to_string(1u << p)) log2 = p;
+    if (log2 < 0)
+      return fail(cmd, "--precinct '" + text + "': must be a power of two from " +
+                           std::to_string(1u << kMinPrecinctLog2) + " to " +
+                           std::to_string(1u << kMaxPrecinctLog2), kExitUsage);
+    wavelet.precinct_log2 = log2;
+  }
   std::vector<uint32_t> tile_sizes;
   if (args.has("tile")) {
     if (coding == "stored") return fail(cmd, "--tile needs --coding wavelet", kExitUsage);

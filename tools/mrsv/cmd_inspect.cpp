@@ -147,6 +147,7 @@ std::string summary(const DecodedGrid& grid) {
          ", levels " + std::to_string(w.levels[0]);
     for (int a = 1; a < h.num_dims; ++a) s += "/" + std::to_string(w.levels[a]);
     s += ", " + std::to_string(grid.bands_decoded) + "/" + std::to_string(grid.bands_total) + " bands";
+    if (w.precinct_log2) s += ", precincts " + std::to_string(1u << w.precinct_log2);
     if (w.hasResidual()) s += grid.residual_decoded ? ", residual" : ", residual missing";
   }
   if (h.hasNodata()) s += ", nodata " + nodataText(h);

@@ -59,6 +59,10 @@ struct WaveletEncodeOptions {
   bool has_roi = false;       // local oracle: full detail where basis functions reach the region
   RegionOfInterest roi;
   double roi_gain = 8;        // the step inside the region is this many times finer
+  // spec 5.7.6: 0, or P (4..24): every array coded in blocks apart, each within
+  // a precinct of 2^P samples per axis, so that a box of the grid is decoded
+  // from the blocks that reach it (decision D90).
+  int precinct_log2 = 0;
 };
 
 struct WaveletEncodeReport {

@@ -77,11 +77,17 @@ struct WaveletHeader {
   uint8_t entropy_mode = kEntropyAdaptive;
   uint8_t frac_bits = 0;
   uint8_t wavelet_flags = 0;
+  // spec 5.2, 5.7.6: 0, or P: every array coded in blocks of precincts of 2^P samples.
+  uint8_t precinct_log2 = 0;
   uint64_t value_offset = 0;  // int64 (integer samples) or float64 bits (float samples)
   uint64_t value_scale = 0;   // float64 bits; 0 for integer samples
   bool hasMask() const { return (wavelet_flags & kWaveletFlagHasMask) != 0; }
   bool hasResidual() const { return (wavelet_flags & kWaveletFlagHasResidual) != 0; }
 };
+
+// spec: 5.2 WHDR.precinct_log2 P: 0 (no blocks) or kMinPrecinctLog2..kMaxPrecinctLog2.
+constexpr int kMinPrecinctLog2 = 4;
+constexpr int kMaxPrecinctLog2 = 24;
 
 // spec: 5.3 band_header(), the first 12 bytes of a GBND payload.
 constexpr size_t kBandHeaderSize = 12;

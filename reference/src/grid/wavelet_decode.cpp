@@ -18,6 +18,7 @@
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/last_level_bands.h"
+#include "grid/precincts.h"
 #include "grid/sample_runs.h"
 #include "grid/weighted_array_coding.h"
 #include "wavelet/axis_plan.h"
@@ -94,6 +95,88 @@ ArrayDestination contiguous(int64_t* values, const ArrayBox& box) {
   return {values, box.size[0], size_t{box.size[0]} * box.size[1]};
 }
 
+// spec: 5.7.6 a blocked array payload (precinct_log2 > 0): the u32 length of
+// each block, then the blocks' arrays back to back, each decoded by
+// decodeArrayPayload over its own box into its place of `out`; a block of
+// length 0 is all zeros. `resolution` gives the blocks (arrayBlocks), `skip` is
+// in raster order of the whole box. Arrays that need a contiguous destination
+// (predicted or baseline; `out.step` 0) go through `block_values`, scratch of
+// the largest block; `block_skip` likewise for a skip.
+Error decodeBlockedPayload(const WaveletHeader& header, const uint8_t* payload, size_t size,
+                           uint64_t payload_offset, const char* field, const ArrayBox& box,
+                           const int resolution[3], ArrayPrediction prediction, const uint8_t* skip,
+                           const ArrayDestination& out, int64_t* symbols, uint16_t* magnitudes,
+                           BlockScratch* scratch) {
+  if (header.precinct_log2 == 0)
+    return decodeArrayPayload(header.entropy_mode, payload, size, payload_offset, field, box,
+                              prediction, skip, out, symbols, magnitudes);
+  const uint64_t count = arrayBlockCount(box, resolution, header.precinct_log2);
+  const uint64_t table = 4 * count;
+  auto fail = [&](uint64_t at, std::string message) {
+    return Error{Status::kBadEntropyPayload, payload_offset + at, field, std::move(message)};
+  };
+  if (size < table)
+    return fail(0, "coded data shorter than its table of " + std::to_string(count) + " block lengths");
+  const std::vector<ArrayBlock> blocks = arrayBlocks(box, resolution, header.precinct_log2);
+  ByteReader r(payload, table);
+  std::vector<uint32_t> lengths(blocks.size());
+  uint64_t total = 0;
+  for (uint32_t& n : lengths) total += n = r.u32();
+  if (total != size - table)
+    return fail(0, "the block lengths add up to " + std::to_string(total) + " bytes, not the " +
+                       std::to_string(size - table) + " after the table");
+  const bool strided = header.entropy_mode != kEntropyBaseline && prediction == ArrayPrediction::kNone;
+  const bool narrow = out.narrow != nullptr;
+  bool all_fit = true;
+  uint64_t at = table;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const ArrayBlock& b = blocks[i];
+    const size_t origin = b.origin[0] + b.origin[1] * out.row_stride + b.origin[2] * out.slice_stride;
+    const uint8_t* block_skip = nullptr;
+    if (skip && lengths[i] != 0) {
+      scratch->skip.resize(b.box.count());
+      copyBlockOut(skip, box.size[0], size_t{box.size[0]} * box.size[1], b, scratch->skip.data());
+      block_skip = scratch->skip.data();
+    }
+    if (lengths[i] == 0) {  // every value of the block is 0
+      for (uint32_t z = 0; z < b.box.size[2]; ++z)
+        for (uint32_t y = 0; y < b.box.size[1]; ++y) {
+          const size_t row = origin + y * out.row_stride + z * out.slice_stride;
+          if (narrow)
+            std::fill_n(out.narrow + row, b.box.size[0], int16_t{0});
+          else
+            std::fill_n(out.data + row, b.box.size[0], int64_t{0});
+        }
+    } else if (strided) {
+      ArrayDestination place = out;
+      bool fits = false;
+      if (narrow) {
+        place.narrow = out.narrow + origin;
+        place.narrow_fits = &fits;
+      } else {
+        place.data = out.data + origin;
+      }
+      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, lengths[i], payload_offset + at,
+                                       field, b.box, prediction, block_skip, place, symbols, magnitudes);
+          !e.ok())
+        return e;
+      all_fit &= fits;
+    } else {
+      scratch->values.resize(b.box.count());
+      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, lengths[i], payload_offset + at,
+                                       field, b.box, prediction, block_skip,
+                                       contiguous(scratch->values.data(), b.box), symbols, magnitudes);
+          !e.ok())
+        return e;
+      copyBlockIn(scratch->values.data(), b, out.data, out.row_stride, out.slice_stride);
+    }
+    at += lengths[i];
+  }
+  if (out.narrow_fits) *out.narrow_fits = all_fit;
+  return {};
+}
+
+
 }  // namespace
 
 struct WaveletState {
@@ -118,6 +201,7 @@ struct WaveletState {
   std::vector<int64_t> band_values;   // scratch for bands not decoded in place
   std::vector<int64_t> band_symbols;  // scratch for predicted bands
   std::vector<uint16_t> band_magnitudes;  // scratch for bands decoded in place
+  BlockScratch blocks;                // scratch for blocked arrays (spec 5.7.6)
   std::vector<uint8_t> mask;          // 1 = no data; empty without a mask
   bool void_values = false;           // DecodeOptions::void_values: the mask is not applied to samples
   std::vector<int64_t> residual;      // empty without a residual
@@ -168,9 +252,11 @@ Error readMask(const ChunkView& chunk, const DecodeOptions& options, WaveletStat
   if (Error e = checkMemory(box.count() * 19, options, chunk); !e.ok()) return e;
   std::vector<int64_t> values(box.count());
   std::vector<uint16_t> magnitudes(box.count());
-  if (Error e = decodeArrayPayload(s->header.entropy_mode, chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
-                                   "GMSK", box, ArrayPrediction::kNone, nullptr,
-                                   contiguous(values.data(), box), nullptr, magnitudes.data());
+  const int full_resolution[3] = {0, 0, 0};
+  if (Error e = decodeBlockedPayload(s->header, chunk.payload, chunk.chunk_length, chunk.payloadOffset(),
+                                     "GMSK", box, full_resolution, ArrayPrediction::kNone, nullptr,
+                                     contiguous(values.data(), box), nullptr, magnitudes.data(),
+                                     &s->blocks);
       !e.ok())
     return e;
   s->mask.resize(values.size());
@@ -224,6 +310,9 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
   box.num_dims = s->plan.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
   const ArrayPrediction prediction = static_cast<ArrayPrediction>(prediction_code);
+  const int axis_levels[3] = {s->header.levels[0], s->header.levels[1], s->header.levels[2]};
+  int resolution[3];
+  bandResolution(band.level, axis_levels, resolution);
   // The weighted predictor keeps two rows of errors (spec 5.7.5) besides the arrays.
   if (prediction == ArrayPrediction::kWeighted) {
     const uint64_t state = uint64_t{box.size[0]} * WeightedPredictor::kBytesPerColumn;
@@ -277,9 +366,9 @@ Error readBand(const ChunkView& chunk, uint32_t index, const DecodeOptions& opti
       in_place || symbols_in_place ? place : contiguous(s->band_values.data(), box);
   decoded.step = in_place ? step : 0;
   auto decode = [&] {
-    return decodeArrayPayload(s->header.entropy_mode, coded, coded_size,
-                              chunk.payloadOffset() + kBandHeaderSize, "GBND", box, prediction,
-                              nullptr, decoded, s->band_symbols.data(), s->band_magnitudes.data());
+    return decodeBlockedPayload(s->header, coded, coded_size, chunk.payloadOffset() + kBandHeaderSize,
+                                "GBND", box, resolution, prediction, nullptr, decoded,
+                                s->band_symbols.data(), s->band_magnitudes.data(), &s->blocks);
   };
   Error e = decode();
   if (decoded.narrow && !narrow_fits) {  // rare: symbols of 2^15 and more
@@ -313,11 +402,13 @@ Error readResidual(const ChunkView& chunk, const DecodeOptions& options, Wavelet
   s->residual.assign(box.count(), 0);
   std::vector<uint16_t> magnitudes(box.count());
   s->residual_step = step;
-  return decodeArrayPayload(s->header.entropy_mode, chunk.payload + kResidualHeaderSize,
-                            chunk.chunk_length - kResidualHeaderSize,
-                            chunk.payloadOffset() + kResidualHeaderSize, "GRES", box,
-                            ArrayPrediction::kNone, s->mask.empty() ? nullptr : s->mask.data(),
-                            contiguous(s->residual.data(), box), nullptr, magnitudes.data());
+  const int full_resolution[3] = {0, 0, 0};
+  return decodeBlockedPayload(s->header, chunk.payload + kResidualHeaderSize,
+                              chunk.chunk_length - kResidualHeaderSize,
+                              chunk.payloadOffset() + kResidualHeaderSize, "GRES", box, full_resolution,
+                              ArrayPrediction::kNone, s->mask.empty() ? nullptr : s->mask.data(),
+                              contiguous(s->residual.data(), box), nullptr, magnitudes.data(),
+                              &s->blocks);
 }
 
 template <class T>

@@ -14,6 +14,7 @@
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
+#include "grid/precincts.h"
 #include "grid/rd_quantizer.h"
 #include "grid/void_fill.h"
 #include "grid/weighted_array_coding.h"
@@ -77,6 +78,50 @@ void fillVoidsWithPredictions(int64_t* values, const ArrayBox& box, ArrayPredict
       }
       predictor.nextRow();
     }
+}
+
+// spec: 5.7.6 one coded array, in blocks apart when the header has precincts.
+// `values` is contiguous over `box`; with `fill_valid` the voids of each coded
+// array are filled with its predictions first (the coarsest block of samples).
+void encodeBlockedArray(const WaveletHeader& wh, int64_t* values, const ArrayBox& box,
+                        const int resolution[3], ArrayPrediction prediction, const uint8_t* skip,
+                        const uint8_t* fill_valid, std::vector<uint8_t>* out) {
+  if (wh.precinct_log2 == 0) {
+    if (fill_valid) fillVoidsWithPredictions(values, box, prediction, fill_valid);
+    encodeArray(wh.entropy_mode, values, box, prediction, skip, out);
+    return;
+  }
+  const std::vector<ArrayBlock> blocks = arrayBlocks(box, resolution, wh.precinct_log2);
+  const size_t row = box.size[0], slice = row * box.size[1];
+  std::vector<uint8_t> coded;
+  std::vector<int64_t> block_values;
+  std::vector<uint8_t> block_skip, block_valid;
+  ByteWriter table(out);
+  const size_t table_at = out->size();
+  for (size_t i = 0; i < blocks.size(); ++i) table.u32(0);
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const ArrayBlock& b = blocks[i];
+    block_values.resize(b.box.count());
+    copyBlockOut(values, row, slice, b, block_values.data());
+    // A block whose values are all 0 is coded as length 0 (nothing to decode).
+    if (std::all_of(block_values.begin(), block_values.end(), [](int64_t v) { return v == 0; }))
+      continue;
+    if (skip) {
+      block_skip.resize(b.box.count());
+      copyBlockOut(skip, row, slice, b, block_skip.data());
+    }
+    if (fill_valid) {
+      block_valid.resize(b.box.count());
+      copyBlockOut(fill_valid, row, slice, b, block_valid.data());
+      fillVoidsWithPredictions(block_values.data(), b.box, prediction, block_valid.data());
+    }
+    coded.clear();
+    encodeArray(wh.entropy_mode, block_values.data(), b.box, prediction,
+                skip ? block_skip.data() : nullptr, &coded);
+    const uint32_t n = static_cast<uint32_t>(coded.size());
+    for (int k = 0; k < 4; ++k) (*out)[table_at + 4 * i + k] = static_cast<uint8_t>(n >> (8 * k));
+    out->insert(out->end(), coded.begin(), coded.end());
+  }
 }
 
 Error invalid(std::string field, std::string message) {
@@ -207,6 +252,12 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   // spec: 5.2 and decision D6: x = (sample - c_min) / scale, so x spans [0, R / scale].
   wavelet_.order = static_cast<uint8_t>(options.order);
   wavelet_.entropy_mode = options.entropy_mode;
+  if (options.precinct_log2 != 0 &&
+      (options.precinct_log2 < kMinPrecinctLog2 || options.precinct_log2 > kMaxPrecinctLog2))
+    return invalid("precinct", "the precinct must be a power of two from 2^" +
+                                   std::to_string(kMinPrecinctLog2) + " to 2^" +
+                                   std::to_string(kMaxPrecinctLog2));
+  wavelet_.precinct_log2 = static_cast<uint8_t>(options.precinct_log2);
   // Weighted prediction exists only with range coding (spec 5.3).
   prediction_ = options.entropy_mode == kEntropyBaseline ? WaveletEncodeOptions::Prediction::kNeighbour
                                                          : options.prediction;
@@ -277,7 +328,9 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
     std::copy(size, size + 3, box.size);
     std::vector<int64_t> mask(n);
     for (size_t i = 0; i < n; ++i) mask[i] = valid_[i] ? 0 : 1;
-    encodeArray(wavelet_.entropy_mode, mask.data(), box, ArrayPrediction::kNone, nullptr, &mask_chunk_);
+    const int full_resolution[3] = {0, 0, 0};
+    encodeBlockedArray(wavelet_, mask.data(), box, full_resolution, ArrayPrediction::kNone, nullptr,
+                       nullptr, &mask_chunk_);
   }
   return {};
 }
@@ -466,8 +519,12 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
   ArrayBox box;
   box.num_dims = plan_.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
+  const int axis_levels[3] = {wavelet_.levels[0], wavelet_.levels[1], wavelet_.levels[2]};
+  int resolution[3];
+  bandResolution(band.level, axis_levels, resolution);
   if (!coarsest) {
-    encodeArray(wavelet_.entropy_mode, q.data(), box, ArrayPrediction::kNone, nullptr, &payload);
+    encodeBlockedArray(wavelet_, q.data(), box, resolution, ArrayPrediction::kNone, nullptr, nullptr,
+                       &payload);
     return payload;
   }
   // The coarsest block is coded with neighbour prediction and, with range
@@ -484,9 +541,9 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
       continue;
     const ArrayPrediction prediction = static_cast<ArrayPrediction>(code);
     std::vector<int64_t> values = q;
-    if (samples) fillVoidsWithPredictions(values.data(), box, prediction, valid_.data());
     std::vector<uint8_t> coded;
-    encodeArray(wavelet_.entropy_mode, values.data(), box, prediction, nullptr, &coded);
+    encodeBlockedArray(wavelet_, values.data(), box, resolution, prediction, nullptr,
+                       samples ? valid_.data() : nullptr, &coded);
     if (best_flags == 0 || coded.size() < best.size()) {
       best.swap(coded);
       best_flags = code;
@@ -575,7 +632,9 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
   std::vector<uint8_t> payload;
   ByteWriter w(&payload);
   w.u32(residual_step);
-  encodeArray(wavelet_.entropy_mode, r.data(), box, ArrayPrediction::kNone, skip.data(), &payload);
+  const int full_resolution[3] = {0, 0, 0};
+  encodeBlockedArray(wavelet_, r.data(), box, full_resolution, ArrayPrediction::kNone, skip.data(),
+                     nullptr, &payload);
   return payload;
 }
 

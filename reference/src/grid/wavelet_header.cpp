@@ -4,6 +4,7 @@
 
 #include "common/byte_reader.h"
 #include "common/byte_writer.h"
+#include "grid/precincts.h"
 #include "mrsv/grid.h"
 #include "wavelet/axis_plan.h"
 
@@ -29,7 +30,7 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
   h.entropy_mode = r.u8();
   h.frac_bits = r.u8();
   h.wavelet_flags = r.u8();
-  uint8_t reserved = r.u8();
+  h.precinct_log2 = r.u8();
   h.value_offset = r.u64();
   h.value_scale = r.u64();
 
@@ -55,7 +56,11 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
   if (float_samples && h.hasResidual())
     return fail(Status::kBadWaveletHeader, 6, "wavelet_flags",
                 "has_residual is only defined for integer samples");
-  if (reserved != 0) return fail(Status::kReservedNonZero, 7, "reserved", "must be 0");
+  if (h.precinct_log2 != 0 &&
+      (h.precinct_log2 < kMinPrecinctLog2 || h.precinct_log2 > kMaxPrecinctLog2))
+    return fail(Status::kBadWaveletHeader, 7, "precinct_log2",
+                "precinct_log2 " + std::to_string(h.precinct_log2) + " is not 0 or " +
+                    std::to_string(kMinPrecinctLog2) + " to " + std::to_string(kMaxPrecinctLog2));
   if (float_samples) {
     double offset, scale;
     std::memcpy(&offset, &h.value_offset, 8);
@@ -98,7 +103,7 @@ std::vector<uint8_t> serializeWaveletHeader(const WaveletHeader& h) {
   w.u8(h.entropy_mode);
   w.u8(h.frac_bits);
   w.u8(h.wavelet_flags);
-  w.u8(0);
+  w.u8(h.precinct_log2);
   w.u64(h.value_offset);
   w.u64(h.value_scale);
   return out;

@@ -1,0 +1,56 @@
+// spec: 5.7.6 the blocks of a blocked array.
+#include "grid/precincts.h"
+
+#include <algorithm>
+
+namespace mrsv {
+
+namespace {
+
+void blockGrid(const ArrayBox& box, const int resolution[3], int precinct_log2, uint32_t edge[3],
+               uint32_t count[3]) {
+  for (int a = 0; a < 3; ++a) {
+    if (a >= box.num_dims) {
+      edge[a] = box.size[a];
+      count[a] = 1;
+      continue;
+    }
+    const int shift = precinct_log2 - resolution[a];
+    edge[a] = std::max(shift > 0 ? uint32_t{1} << shift : 1u, kMinBlockEdge);
+    count[a] = static_cast<uint32_t>((uint64_t{box.size[a]} + edge[a] - 1) / edge[a]);
+  }
+}
+
+}  // namespace
+
+uint64_t arrayBlockCount(const ArrayBox& box, const int resolution[3], int precinct_log2) {
+  uint32_t edge[3], count[3];
+  blockGrid(box, resolution, precinct_log2, edge, count);
+  return uint64_t{count[0]} * count[1] * count[2];
+}
+
+std::vector<ArrayBlock> arrayBlocks(const ArrayBox& box, const int resolution[3], int precinct_log2) {
+  uint32_t edge[3], count[3];
+  blockGrid(box, resolution, precinct_log2, edge, count);
+  std::vector<ArrayBlock> blocks;
+  blocks.reserve(size_t{count[0]} * count[1] * count[2]);
+  for (uint32_t k = 0; k < count[2]; ++k)
+    for (uint32_t j = 0; j < count[1]; ++j)
+      for (uint32_t i = 0; i < count[0]; ++i) {
+        const uint32_t index[3] = {i, j, k};
+        ArrayBlock b;
+        b.box.num_dims = box.num_dims;
+        for (int a = 0; a < 3; ++a) {
+          b.origin[a] = index[a] * edge[a];
+          b.box.size[a] = std::min(edge[a], box.size[a] - b.origin[a]);
+        }
+        blocks.push_back(b);
+      }
+  return blocks;
+}
+
+void bandResolution(int level, const int axis_levels[3], int resolution[3]) {
+  for (int a = 0; a < 3; ++a) resolution[a] = std::min(level, axis_levels[a]);
+}
+
+}  // namespace mrsv
