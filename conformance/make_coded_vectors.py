@@ -68,6 +68,30 @@ def crop(name, src, origin, size, nbytes):
     return bytes(out)
 
 
+SAMPLE_BYTES = {"uint8": 1, "int16": 2, "uint16": 2, "int32": 4, "float32": 4, "float64": 8}
+
+
+def region_of(output, text):
+    """The canonical region output (spec 11.5) of box `text`, cut from a whole
+    canonical grid output (3.4)."""
+    line, _, samples = output.partition(b"\n")
+    f = line.decode("ascii").split()
+    stype, dims, size, count, nodata = f[2], int(f[3]), [int(v) for v in f[4:7]], int(f[7]), f[8]
+    v = [int(x) for x in text.split(",")]
+    lo, hi = v[:dims] + [0] * (3 - dims), v[dims:] + [1] * (3 - dims)
+    sub = bytearray()
+    nbytes = SAMPLE_BYTES[stype]
+    if count:
+        for z in range(lo[2], hi[2]):
+            for y in range(lo[1], hi[1]):
+                at = ((z * size[1] + y) * size[0] + lo[0]) * nbytes
+                sub += samples[at:at + (hi[0] - lo[0]) * nbytes]
+    sizes = [hi[a] - lo[a] for a in range(3)]
+    n = sizes[0] * sizes[1] * sizes[2] if count else 0
+    head = f"mrsv-canonical-grid 1 {stype} {dims} {sizes[0]} {sizes[1]} {sizes[2]} {n} {nodata}\n"
+    return head.encode("ascii") + bytes(sub)
+
+
 class Generator:
     def __init__(self, mrsv, tmp):
         self.mrsv, self.tmp = mrsv, tmp
@@ -97,14 +121,22 @@ class Generator:
         subprocess.run([self.mrsv, "decode", "--quiet", "--canonical", *options, src, out], check=True)
         return open(out, "rb").read()
 
-    def valid(self, name, data, clause, description, expected=None, levels=()):
-        """`levels`: vertex counts of mesh levels whose outputs the manifest lists (spec 6.8)."""
+    def valid(self, name, data, clause, description, expected=None, levels=(), regions=()):
+        """`levels`: vertex counts of mesh levels whose outputs the manifest lists (spec 6.8);
+        `regions`: boxes (X0,Y0[,Z0],X1,Y1[,Z1]) whose canonical region outputs (11.5) it
+        lists, cut here from the whole output."""
         path = f"{CODED_PREFIX}valid/{name}.mrsv"
         self.files[path] = data
         by = "construction" if expected is not None else "reference decoder"
         output = expected if expected is not None else self.reference_output(data)
         entry = {"file": path, "valid": True, "sha256": hashlib.sha256(output).hexdigest(),
                  "output_bytes": len(output), "expected_by": by, "clause": clause, "description": description}
+        if regions:
+            entry["regions"] = []
+            for text in regions:
+                out = region_of(output, text)
+                entry["regions"].append({"region": text, "sha256": hashlib.sha256(out).hexdigest(),
+                                         "output_bytes": len(out)})
         if levels:
             entry["levels"] = []
             for n in levels:
@@ -275,40 +307,45 @@ def build(g):
     g.valid("prefix_linear_half_bands", frame(linear[:linear_bands[len(linear_bands) // 2] + 1]), "2.5.1, 4.5, 5.1",
             "a prefix of a linear B-spline stream, cut after half its bands")
 
-    # Precincts (5.7.6): every array (bands, mask, residual) in blocks coded apart.
+    # Precincts (5.7.6): every array (bands, mask, residual) in blocks coded apart,
+    # with region outputs (a region decoder reads the blocks a box reaches).
+    R2 = ["0,0,1,1", "17,20,40,21", "5,3,61,45", "30,10,45,44"]
+    R2F = ["0,0,1,1", "20,10,40,30", "0,0,53,47"]
+    R3 = ["3,4,5,20,20,9", "0,0,0,37,29,19", "36,28,18,37,29,19"]
     g.valid("terrain_precinct16_lossless",
             g.encode(helens, "int16", h2, ["--precinct", "16", "--lossless", "--bound-route", "residual"]),
             "5.7.6", "a terrain window in precincts of 16: bands and residual in blocks, lossless",
-            expected=canonical("int16", h2, helens))
+            expected=canonical("int16", h2, helens), regions=R2)
     g.valid("terrain_precinct16_weighted_lossless",
             g.encode(helens, "int16", h2, ["--precinct", "16", "--lossless", "--bound-route", "predictive",
                                            "--prediction", "weighted"]),
             "5.7.5, 5.7.6", "the samples in blocks of 16 x 16, each with weighted prediction of its own",
-            expected=canonical("int16", h2, helens))
+            expected=canonical("int16", h2, helens), regions=R2)
     g.valid("terrain_precinct16_nodata_neighbour",
             g.encode(fuji, "int16", [53, 47], ["--precinct", "16", "--max-error", "2", "--bound-route",
                                                "predictive", "--prediction", "neighbour"], nodata=-32768),
-            "5.7.4, 5.7.6", "SRTM window with voids: mask in blocks, samples with step 5 predicted block by block")
+            "5.7.4, 5.7.6", "SRTM window with voids: mask in blocks, samples with step 5 predicted block by block",
+            regions=R2F)
     g.valid("terrain_precinct32_nodata_max_error4",
             g.encode(fuji, "int16", [53, 47], ["--precinct", "32", "--max-error", "4", "--bound-route", "residual"],
                      nodata=-32768),
             "5.5, 5.7.6", "SRTM window with voids, precincts of 32: mask, bands and residual in blocks; "
-            "coarse levels in blocks of 16")
+            "coarse levels in blocks of 16", regions=R2F)
     g.valid("volume_precinct16_rate",
             g.encode(head, "uint8", h3, ["--precinct", "16", "--progressive", "--bits-per-sample", "1.5"]),
-            "5.7.6", "a CT block (3-D uint8) in precincts of 16^3, about 1.5 bits per sample")
+            "5.7.6", "a CT block (3-D uint8) in precincts of 16^3, about 1.5 bits per sample", regions=R3)
     g.valid("volume_precinct16_baseline_rate",
             g.encode(head, "uint8", h3, ["--precinct", "16", "--entropy", "baseline", "--progressive",
                                          "--bits-per-sample", "1.5"]),
-            "5.7.6, 5.10", "the same in the baseline entropy mode")
+            "5.7.6, 5.10", "the same in the baseline entropy mode", regions=R3)
     g.valid("terrain_precinct16_step",
             g.encode(helens, "int16", h2, ["--precinct", "16", "--step", "40"]),
-            "5.7.6", "a terrain window, precincts of 16, step 40: blocks of all zeros have length 0")
+            "5.7.6", "a terrain window, precincts of 16, step 40: blocks of all zeros have length 0", regions=R2)
     pre = parse_chunks(g.encode(helens, "int16", h2, ["--precinct", "16", "--max-error", "1",
                                                       "--bound-route", "residual"]))
     pre_bands = [i for i, (t, _) in enumerate(pre) if t == "GBND"]
     g.valid("precinct_prefix_half_bands", frame(pre[:pre_bands[len(pre_bands) // 2] + 1]), "2.5.1, 5.7.6",
-            "a prefix of a stream in precincts of 16, cut after half its bands")
+            "a prefix of a stream in precincts of 16, cut after half its bands", regions=R2)
 
     def block_table(payload):
         """(n, lengths) of a blocked array: the first n whose lengths add up to the rest."""

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 
 #include "common/crc32c.h"
 #include "grid/precincts.h"
 #include "mrsv/container.h"
 #include "mrsv/encode.h"
+#include "mrsv/tiled_grid.h"
 #include "shared_data.h"
 #include "test_support.h"
 
@@ -38,6 +40,20 @@ Container chunksOf(const std::vector<uint8_t>& stream) {
   Error e = readContainer(stream.data(), stream.size(), ContainerOptions{}, &c);
   EXPECT_TRUE(e.ok()) << e.describe();
   return c;
+}
+
+// St Helens with voids (no-data -32768): a lake of 40 x 30 samples across
+// precinct borders and every 97th sample.
+test::SharedGrid stHelensWithVoids() {
+  test::SharedGrid g = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
+  g.header.grid_flags |= kGridFlagHasNodata;
+  g.header.nodata_bits = 0x8000;
+  const int16_t void_value = -32768;
+  for (uint32_t y = 0; y < 460; ++y)
+    for (uint32_t x = 0; x < 317; ++x)
+      if ((x >= 110 && x < 150 && y >= 240 && y < 270) || (y * 317 + x) % 97 == 0)
+        std::memcpy(g.samples.data() + 2 * (y * 317 + x), &void_value, 2);
+  return g;
 }
 
 DecodedGrid decode(const std::vector<uint8_t>& stream) {
@@ -91,16 +107,7 @@ TEST(Precincts, SameSamplesAsWithoutPrecinctsAtTheSameStep) {
 }
 
 TEST(Precincts, LosslessAndBoundedWithVoidsIn2DAnd3D) {
-  // St Helens with voids: a lake of 40 x 30 samples across precinct borders
-  // and every 97th sample.
-  test::SharedGrid helens = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
-  helens.header.grid_flags |= kGridFlagHasNodata;
-  helens.header.nodata_bits = 0x8000;  // -32768
-  const int16_t void_value = -32768;
-  for (uint32_t y = 0; y < 460; ++y)
-    for (uint32_t x = 0; x < 317; ++x)
-      if ((x >= 110 && x < 150 && y >= 240 && y < 270) || (y * 317 + x) % 97 == 0)
-        std::memcpy(helens.samples.data() + 2 * (y * 317 + x), &void_value, 2);
+  test::SharedGrid helens = stHelensWithVoids();
   WaveletEncodeOptions o;
   o.max_error = 0;
   EXPECT_EQ(decode(encode(helens, o, 6)).samples, helens.samples);
@@ -154,6 +161,103 @@ TEST(Precincts, ABrokenBlockIsReportedAtItsOffset) {
   Error e = decodeGrid(broken.data(), broken.size(), DecodeOptions{}, &out);
   EXPECT_EQ(e.status, Status::kBadEntropyPayload);
   EXPECT_EQ(e.offset, table + 4 * n);
+}
+
+// Region decoding by precinct equals the same box of the whole decode, for
+// every wavelet, 2-D and 3-D, with a mask and a residual, for prefixes; and a
+// small box reads a small part of the file.
+void expectRegionsMatch(const std::vector<uint8_t>& stream, uint32_t trials, uint64_t seed,
+                        uint64_t* least_read = nullptr) {
+  const DecodedGrid whole = decode(stream);
+  const GridHeader& h = whole.header;
+  const uint32_t n[3] = {h.size_x, h.size_y, h.size_z};
+  const size_t bytes = sampleSize(h.sample_type);
+  std::mt19937_64 rng(seed);
+  for (uint32_t t = 0; t < trials; ++t) {
+    GridRegion r;
+    for (int a = 0; a < 3; ++a) {
+      uint32_t lo = static_cast<uint32_t>(rng() % n[a]), hi = static_cast<uint32_t>(rng() % n[a]);
+      if (t % 3 == 0) hi = std::min<uint32_t>(n[a] - 1, lo + static_cast<uint32_t>(rng() % 40));
+      if (lo > hi) std::swap(lo, hi);
+      r.lo[a] = lo;
+      r.hi[a] = hi + 1;
+    }
+    MemoryByteSource source(stream.data(), stream.size());
+    DecodedGrid region;
+    Error e = decodeGridRegion(source, r, DecodeOptions{}, &region);
+    ASSERT_TRUE(e.ok()) << e.describe();
+    ASSERT_TRUE(region.region_by_precincts);
+    ASSERT_EQ(region.has_samples, whole.has_samples);
+    if (!whole.has_samples) continue;
+    size_t k = 0;
+    for (uint32_t z = r.lo[2]; z < r.hi[2]; ++z)
+      for (uint32_t y = r.lo[1]; y < r.hi[1]; ++y) {
+        const size_t at = ((uint64_t{z} * n[1] + y) * n[0] + r.lo[0]) * bytes, len = (r.hi[0] - r.lo[0]) * bytes;
+        ASSERT_EQ(0, std::memcmp(region.samples.data() + k, whole.samples.data() + at, len))
+            << "box " << r.lo[0] << "," << r.lo[1] << "," << r.lo[2] << " .. " << r.hi[0] << "," << r.hi[1] << ","
+            << r.hi[2] << " row y " << y << " z " << z;
+        k += len;
+      }
+    if (least_read) *least_read = std::min(*least_read, source.bytesRead());
+  }
+}
+
+TEST(Precincts, RegionsEqualTheWholeDecode) {
+  test::SharedGrid g = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
+  for (int order : {kWaveletOrderCdf97, 1, 2, 4}) {
+    WaveletEncodeOptions o;
+    o.order = order;
+    o.step = 5;
+    SCOPED_TRACE("order " + std::to_string(order));
+    uint64_t least = UINT64_MAX;
+    const std::vector<uint8_t> s = encode(g, o, 6);
+    expectRegionsMatch(s, 24, 7 + order, &least);
+    EXPECT_LT(least, s.size() / 4);  // a box of at most 40^2 samples reads little
+  }
+  WaveletEncodeOptions bounded;  // a residual without a mask
+  bounded.max_error = 1;
+  bounded.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+  expectRegionsMatch(encode(g, bounded, 4), 12, 9);
+  test::SharedGrid feet = g;  // float32 samples (5.8.2's two binary64 operations)
+  feet.header.sample_type = SampleType::kFloat32;
+  feet.samples.resize(g.samples.size() * 2);
+  for (size_t i = 0; i < g.header.sampleCount(); ++i) {
+    int16_t v;
+    std::memcpy(&v, g.samples.data() + 2 * i, 2);
+    const float f = static_cast<float>(v) / 0.3048f;
+    std::memcpy(feet.samples.data() + 4 * i, &f, 4);
+  }
+  WaveletEncodeOptions psnr;
+  psnr.psnr = 60;
+  expectRegionsMatch(encode(feet, psnr, 6), 12, 13);
+  WaveletEncodeOptions rate;  // weighted prediction of a coarse block, blocks of length 0
+  rate.bits_per_sample = 0.5;
+  expectRegionsMatch(encode(g, rate, 5), 24, 3);
+}
+
+TEST(Precincts, RegionsWithMaskResidualPrefixesAndVolumes) {
+  test::SharedGrid g = stHelensWithVoids();
+  WaveletEncodeOptions bounded;
+  bounded.max_error = 2;
+  bounded.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+  const std::vector<uint8_t> s = encode(g, bounded, 5);
+  expectRegionsMatch(s, 16, 11);
+  // Prefixes: after the mask, after two bands, before GRES, before MEND.
+  Container c = chunksOf(s);
+  for (size_t i = 2; i < c.chunks.size(); ++i) {
+    const ChunkType t = c.chunks[i].chunk_type;
+    if (t != kChunkNodataMask && t != kChunkResidual && t != kChunkEnd && i != 6) continue;
+    SCOPED_TRACE("prefix before chunk " + std::to_string(i));
+    expectRegionsMatch(std::vector<uint8_t>(s.begin(), s.begin() + c.chunks[i].offset), 6, i);
+  }
+  test::SharedGrid head = load("volume/ct_head_vtk_headsq_64x64x93_uint16le.raw.zst");
+  for (int order : {kWaveletOrderCdf97, 2}) {
+    WaveletEncodeOptions o;
+    o.order = order;
+    o.step = 3;
+    SCOPED_TRACE("volume, order " + std::to_string(order));
+    expectRegionsMatch(encode(head, o, 4), 12, 5);
+  }
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Issue 24's measured goals for tiled grids, peers measured in the same run.
 
-  1. A terrain mosaic of at least 12,000 x 12,000 samples, built from the four SRTM
+  1. A terrain mosaic of at least 12,000 x 12,000 samples, built from the three SRTM
      tiles of ../shared/data by tiling with mirroring (each copy reflected so that
      neighbours meet along equal edges; a stand-in until larger real data is
      available): encoded with 256 x 256 tiles, on 1 and 2 threads (same bytes,
      speed-up), peak memory against the raw size; decoded whole and as a 512 x 512
      region (speed ratio, bytes read), against OpenJPEG's tiled JPEG 2000 at the
-     same rate decoded with opj_decompress -d on the same window.
+     same rate decoded with opj_decompress -d on the same window. The same grid in
+     precincts of 256^2 (spec 5.7.6): encode, whole decode, the region, OpenJPEG.
   2. Rate-distortion at 1 bit per sample, tiled (256^2, and 64^3 bricks for a CT
      volume) and in precincts of the same size (spec 5.7.6) against neither, per grid.
 
@@ -137,6 +138,31 @@ def main():
         print(f"OpenJPEG (tiled 256, {8 * os.path.getsize(j2k) / side / side:.3f} bits/sample, encode {dt:.0f} s): "
               f"opj_decompress -d on the same window {1000 * opj:.0f} ms; MRSV region / OpenJPEG speed "
               f"{opj / region:.2f}x")
+
+        # Precincts (spec 5.7.6): the same grid and options in one transform,
+        # every band in blocks of 256^2 samples; the region decoded from the
+        # blocks it reaches, against the whole and against OpenJPEG at the
+        # precinct stream's own rate.
+        pstream = os.path.join(tmp, "p.mrsv")
+        dt, rss, _ = run([mrsv, "encode", "--quiet", *dims, "--precinct", "256", "--max-error", "2",
+                          "--bound-route", "residual", raw, pstream])
+        pbps = 8 * os.path.getsize(pstream) / (side * side)
+        print(f"precincts 256: encode {dt:.0f} s (in memory, one thread), peak {rss:.0f} MB; "
+              f"{os.path.getsize(pstream) / 2**20:.1f} MiB, {pbps:.3f} bits/sample")
+        pwhole = best([mrsv, "decode", "--quiet", "--threads", "1", pstream, os.path.join(tmp, "w.raw")], 1)
+        pregion = best([mrsv, "decode", "--quiet", "--threads", "1", "--region", box, pstream,
+                        os.path.join(tmp, "r.raw")], 5)
+        _, prss, err = run([mrsv, "decode", "--threads", "1", "--region", box, pstream, os.path.join(tmp, "r.raw")])
+        read = re.search(r"(\d+) of (\d+) bytes read", err)
+        run(["opj_compress", "-i", raw, "-o", j2k, "-F", f"{side},{side},1,16,s@1x1", "-t", "256,256",
+             "-r", f"{16 / pbps:.3f}"])
+        popj = best(["opj_decompress", "-i", j2k, "-o", os.path.join(tmp, "o.raw"), "-d",
+                     f"{x0},{y0},{x0 + 512},{y0 + 512}"], 3)
+        print(f"precincts: whole decode {pwhole:.2f} s; 512 x 512 region {1000 * pregion:.0f} ms "
+              f"({pwhole / pregion:.0f}x faster), peak {prss:.0f} MB, {int(read.group(1)) / 2**10:.0f} KiB of "
+              f"{int(read.group(2)) / 2**20:.1f} MiB read; OpenJPEG at {8 * os.path.getsize(j2k) / side / side:.3f} "
+              f"bits/sample: {1000 * popj:.0f} ms, MRSV region / OpenJPEG speed {popj / pregion:.2f}x")
+        os.remove(pstream)
 
         # Out of core: the grid read a row of tiles at a time (peak memory
         # against the raw size), and MPI ranks (speed-up, same bytes).

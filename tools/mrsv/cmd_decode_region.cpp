@@ -49,7 +49,9 @@ int runRegionDecode(const Args& args, const std::string& in, const std::string& 
                  grid.output_size[0], grid.output_size[1], grid.output_size[2],
                  static_cast<unsigned long long>(source->bytesRead()),
                  static_cast<unsigned long long>(source->size()),
-                 grid.header.coding == GridCoding::kTiled ? "" : " (not tiled: the whole grid decoded)");
+                 grid.header.coding == GridCoding::kTiled ? ""
+                 : grid.region_by_precincts              ? " (precincts: the blocks the region reaches)"
+                                                         : " (not tiled: the whole grid decoded)");
   if (!writeFileAtomically(out, output, &error)) return fail(cmd, out + ": " + error, kExitIo);
   progress.update(1.0);
   return kExitOk;

@@ -158,6 +158,9 @@ struct DecodedGrid {
   bool residual_decoded = false;
   bool has_samples = false;        // samples were produced (stored: GRAW read; wavelet: >= 1 band)
   uint32_t output_size[3] = {0, 0, 0};  // sizes of `samples` (smaller with reduce_levels)
+  // decodeGridRegion() read only the blocks the region reaches (a grid in
+  // precincts, spec 5.7.6), not the whole grid.
+  bool region_by_precincts = false;
   // Tiled grids (coding 2, spec 11): the tile size (0 for other codings), the
   // tiles, and those with samples (the grid has samples when all have).
   uint32_t tile_size[3] = {0, 0, 0};

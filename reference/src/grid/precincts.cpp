@@ -5,8 +5,6 @@
 
 namespace mrsv {
 
-namespace {
-
 void blockGrid(const ArrayBox& box, const int resolution[3], int precinct_log2, uint32_t edge[3],
                uint32_t count[3]) {
   for (int a = 0; a < 3; ++a) {
@@ -21,7 +19,15 @@ void blockGrid(const ArrayBox& box, const int resolution[3], int precinct_log2, 
   }
 }
 
-}  // namespace
+ArrayBlock blockAt(const ArrayBox& box, const uint32_t edge[3], const uint32_t index[3]) {
+  ArrayBlock b;
+  b.box.num_dims = box.num_dims;
+  for (int a = 0; a < 3; ++a) {
+    b.origin[a] = index[a] * edge[a];
+    b.box.size[a] = std::min(edge[a], box.size[a] - b.origin[a]);
+  }
+  return b;
+}
 
 uint64_t arrayBlockCount(const ArrayBox& box, const int resolution[3], int precinct_log2) {
   uint32_t edge[3], count[3];
@@ -38,13 +44,7 @@ std::vector<ArrayBlock> arrayBlocks(const ArrayBox& box, const int resolution[3]
     for (uint32_t j = 0; j < count[1]; ++j)
       for (uint32_t i = 0; i < count[0]; ++i) {
         const uint32_t index[3] = {i, j, k};
-        ArrayBlock b;
-        b.box.num_dims = box.num_dims;
-        for (int a = 0; a < 3; ++a) {
-          b.origin[a] = index[a] * edge[a];
-          b.box.size[a] = std::min(edge[a], box.size[a] - b.origin[a]);
-        }
-        blocks.push_back(b);
+        blocks.push_back(blockAt(box, edge, index));
       }
   return blocks;
 }

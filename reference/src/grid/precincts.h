@@ -37,6 +37,14 @@ struct BlockScratch {
   std::vector<uint8_t> skip;
 };
 
+// The block edge and the number of blocks along each axis (block (i, j, k) is
+// number i + count[0] * (j + count[1] * k), starting at i * edge[0], ...).
+void blockGrid(const ArrayBox& box, const int resolution[3], int precinct_log2, uint32_t edge[3],
+               uint32_t count[3]);
+
+// Block `index` of that grid (index[a] < count[a]).
+ArrayBlock blockAt(const ArrayBox& box, const uint32_t edge[3], const uint32_t index[3]);
+
 // How many blocks arrayBlocks() gives, without making them: a decoder checks
 // the table of lengths against it first (spec 5.7.6 rule 1).
 uint64_t arrayBlockCount(const ArrayBox& box, const int resolution[3], int precinct_log2);

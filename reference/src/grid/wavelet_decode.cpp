@@ -15,6 +15,7 @@
 #include "common/byte_reader.h"
 #include "common/large_array.h"
 #include "grid/array_decoding.h"
+#include "grid/array_payload.h"
 #include "grid/baseline_coding.h"
 #include "grid/coefficient_coding.h"
 #include "grid/last_level_bands.h"
@@ -51,43 +52,6 @@ void dequantizeRow(const int64_t* src, int64_t* dst, uint32_t n, uint64_t step) 
 int64_t roundShift(int64_t v, int w) {
   const int64_t t = v + (w == 0 ? 0 : int64_t{1} << (w - 1));
   return t >= 0 ? t >> w : ~(~t >> w);
-}
-
-// Decodes one array payload: spec 5.6 and 5.7 (or 5.10 in the baseline mode).
-// Range-coded arrays without prediction (detail bands, mask, residual: nearly
-// every coded symbol) go straight to `out`, which may be strided and dequantise
-// (out.step), with `magnitudes` as scratch of box.count() entries. The others
-// need a contiguous `out` with step 0 (row_stride = X, slice_stride = X * Y)
-// and, with prediction, `symbols`: scratch of box.count() entries (neighbour
-// prediction) or 2 * X (weighted prediction).
-Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t size,
-                         uint64_t payload_offset, const char* field, const ArrayBox& box,
-                         ArrayPrediction prediction, const uint8_t* skip,
-                         const ArrayDestination& out, int64_t* symbols, uint16_t* magnitudes) {
-  auto fail = [&](std::string message) {
-    return Error{Status::kBadEntropyPayload, payload_offset, field, std::move(message)};
-  };
-  if (entropy_mode == kEntropyBaseline) {  // spec: 5.10
-    std::string problem = decodeBaselineArray(payload, size, box, prediction, skip, out.data);
-    return problem.empty() ? Error{} : fail(problem);
-  }
-  RangeDecoder rc(payload, size);
-  if (!rc.validStart()) return fail("coded data must start with a 0 byte");
-  bool ok;
-  if (prediction == ArrayPrediction::kNone) {
-    ok = decodeUnpredictedArray(&rc, box, skip, out, magnitudes);
-  } else {
-    DecodingCoder coder{&rc};
-    // Weighted arrays (spec 5.7.5) are only bands, which have no skipped positions.
-    ok = prediction == ArrayPrediction::kWeighted
-             ? skip == nullptr && codeWeightedArray(coder, out.data, symbols, box)
-             : codeArray(coder, out.data, symbols, box, prediction, skip);
-  }
-  if (!ok) return fail("a magnitude prefix is longer than 39 bits");
-  if (rc.overrun() != 0) return fail("coded data ends before the array does");
-  if (rc.consumed() != size)
-    return fail(std::to_string(size - rc.consumed()) + " bytes of coded data left over");
-  return {};
 }
 
 // The destination of a contiguous array over `box`.
@@ -178,6 +142,43 @@ Error decodeBlockedPayload(const WaveletHeader& header, const uint8_t* payload, 
 
 
 }  // namespace
+
+// spec: 5.6 and 5.7 (or 5.10 in the baseline mode), declared in
+// grid/array_payload.h. Range-coded arrays without prediction (detail bands, mask, residual: nearly
+// every coded symbol) go straight to `out`, which may be strided and dequantise
+// (out.step), with `magnitudes` as scratch of box.count() entries. The others
+// need a contiguous `out` with step 0 (row_stride = X, slice_stride = X * Y)
+// and, with prediction, `symbols`: scratch of box.count() entries (neighbour
+// prediction) or 2 * X (weighted prediction).
+Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t size,
+                         uint64_t payload_offset, const char* field, const ArrayBox& box,
+                         ArrayPrediction prediction, const uint8_t* skip,
+                         const ArrayDestination& out, int64_t* symbols, uint16_t* magnitudes) {
+  auto fail = [&](std::string message) {
+    return Error{Status::kBadEntropyPayload, payload_offset, field, std::move(message)};
+  };
+  if (entropy_mode == kEntropyBaseline) {  // spec: 5.10
+    std::string problem = decodeBaselineArray(payload, size, box, prediction, skip, out.data);
+    return problem.empty() ? Error{} : fail(problem);
+  }
+  RangeDecoder rc(payload, size);
+  if (!rc.validStart()) return fail("coded data must start with a 0 byte");
+  bool ok;
+  if (prediction == ArrayPrediction::kNone) {
+    ok = decodeUnpredictedArray(&rc, box, skip, out, magnitudes);
+  } else {
+    DecodingCoder coder{&rc};
+    // Weighted arrays (spec 5.7.5) are only bands, which have no skipped positions.
+    ok = prediction == ArrayPrediction::kWeighted
+             ? skip == nullptr && codeWeightedArray(coder, out.data, symbols, box)
+             : codeArray(coder, out.data, symbols, box, prediction, skip);
+  }
+  if (!ok) return fail("a magnitude prefix is longer than 39 bits");
+  if (rc.overrun() != 0) return fail("coded data ends before the array does");
+  if (rc.consumed() != size)
+    return fail(std::to_string(size - rc.consumed()) + " bytes of coded data left over");
+  return {};
+}
 
 struct WaveletState {
   const GridHeader* grid = nullptr;
@@ -452,6 +453,28 @@ void writeSample(const GridHeader& g, const WaveletHeader& w, int64_t value, uin
   }
 }
 
+}  // namespace
+
+void sampleOfValue(const GridHeader& g, const WaveletHeader& w, int64_t t, bool masked, int64_t r,
+                   uint32_t residual_step, uint8_t* out) {
+  if (masked) {
+    uint8_t nodata[8];
+    std::memcpy(nodata, &g.nodata_bits, 8);
+    std::memcpy(out, nodata, sampleSize(g.sample_type));
+    return;
+  }
+  int64_t v = roundShift(t, w.frac_bits);
+  if (g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64) {
+    // Clamped before and after the residual, so that an encoder can compute
+    // the residual from the decoded samples alone.
+    v = clampToType(v + static_cast<int64_t>(w.value_offset), g.sample_type);
+    if (residual_step > 0) v = clampToType(v + r * int64_t{residual_step}, g.sample_type);
+  }
+  writeSample(g, w, v, out);
+}
+
+namespace {
+
 // spec: 5.8.2 at full resolution, integer samples of type T: output position k
 // is grid position k, so the mask and the residual are read at k. Row by row,
 // with the common case (no mask, no residual) a loop of its own.
@@ -593,13 +616,8 @@ void mapSamplesOneByOne(const WaveletState& s, int stop, const uint32_t size[3],
                         const int axis_stop[3], uint8_t* samples) {
   const GridHeader& g = *s.grid;
   const bool full = stop == 0;
-  const bool integer = g.sample_type != SampleType::kFloat32 && g.sample_type != SampleType::kFloat64;
   const size_t bytes_per_sample = sampleSize(g.sample_type);
   const uint64_t px = s.array_plan.axis[0].size(0), pxy = px * s.array_plan.axis[1].size(0);
-  const int w = s.header.frac_bits;
-  const int64_t offset = static_cast<int64_t>(s.header.value_offset);
-  uint8_t nodata[8];
-  std::memcpy(nodata, &g.nodata_bits, 8);
   size_t k = 0;
   for (uint32_t z = 0; z < size[2]; ++z)
     for (uint32_t y = 0; y < size[1]; ++y)
@@ -612,19 +630,10 @@ void mapSamplesOneByOne(const WaveletState& s, int stop, const uint32_t size[3],
         if (fy >= g.size_y) fy = g.size_y - 1;
         if (fz >= g.size_z) fz = g.size_z - 1;
         uint64_t fi = fx + fy * g.size_x + fz * uint64_t{g.size_x} * g.size_y;
-        if (!s.mask.empty() && !s.void_values && s.mask[fi]) {
-          std::memcpy(dst, nodata, bytes_per_sample);
-          continue;
-        }
-        int64_t v = roundShift(s.coefficients[x + y * px + z * pxy], w);
-        if (integer) {
-          // Clamped before and after the residual, so that an encoder can compute
-          // the residual from the decoded samples alone.
-          v = clampToType(v + offset, g.sample_type);
-          if (full && !s.residual.empty())
-            v = clampToType(v + s.residual[fi] * int64_t{s.residual_step}, g.sample_type);
-        }
-        writeSample(g, s.header, v, dst);
+        const bool residual = full && !s.residual.empty();
+        sampleOfValue(g, s.header, s.coefficients[x + y * px + z * pxy],
+                      !s.mask.empty() && !s.void_values && s.mask[fi], residual ? s.residual[fi] : 0,
+                      residual ? s.residual_step : 0, dst);
       }
 }
 

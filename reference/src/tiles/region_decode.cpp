@@ -5,6 +5,7 @@
 
 #include "common/byte_reader.h"
 #include "bitstream/container_framer.h"
+#include "grid/precinct_region.h"
 #include "tiles/tile_decode.h"
 
 namespace mrsv {
@@ -15,23 +16,35 @@ Error ioError(uint64_t offset, const std::string& what) {
   return Error{Status::kIoError, offset, "file", "cannot read " + what};
 }
 
-// The bytes from the start of the file to the end of TIDX (or of the whole
-// file when the grid is not tiled or the header part is cut short), read
-// chunk by chunk, so that readContainer frames them with the offsets of the
-// file.
-Error readHead(ByteSource& source, std::vector<uint8_t>* head, bool* whole_file) {
-  *whole_file = false;
+// The whole file, when the region is decoded from a whole decode.
+Error readAll(ByteSource& source, std::vector<uint8_t>* head) {
   const uint64_t size = source.size();
-  auto readAll = [&]() -> Error {
-    head->resize(size);
-    if (size > 0 && !source.read(0, size, head->data())) return ioError(0, "the file");
+  head->resize(size);
+  if (size > 0 && !source.read(0, size, head->data())) return ioError(0, "the file");
+  return {};
+}
+
+// The bytes from the start of the file to the end of TIDX, or for a
+// wavelet-coded grid in precincts (with `precincts_allowed`) to the end of
+// WHDR (*precincts then set), read chunk by chunk so that readContainer frames
+// them with the offsets of the file; otherwise (or when the header part is
+// cut short) the whole file.
+Error readHead(ByteSource& source, bool precincts_allowed, std::vector<uint8_t>* head, bool* whole_file,
+               bool* precincts) {
+  *whole_file = false;
+  *precincts = false;
+  const uint64_t size = source.size();
+  uint64_t pos = std::min<uint64_t>(size, kFileHeaderSize);
+  // The rest of the file after the chunks read so far (head holds [0, pos)).
+  auto whole = [&]() -> Error {
     *whole_file = true;
+    head->resize(size);
+    if (size > pos && !source.read(pos, size - pos, head->data() + pos)) return ioError(pos, "the file");
     return {};
   };
-  uint64_t pos = std::min<uint64_t>(size, kFileHeaderSize);
   head->resize(pos);
   if (pos > 0 && !source.read(0, pos, head->data())) return ioError(0, "the file header");
-  bool first = true;
+  bool first = true, wavelet_grid = false;
   while (pos + kChunkHeaderSize <= size) {
     uint8_t chunk_header[kChunkHeaderSize];
     if (!source.read(pos, kChunkHeaderSize, chunk_header)) return ioError(pos, "a chunk header");
@@ -39,25 +52,36 @@ Error readHead(ByteSource& source, std::vector<uint8_t>* head, bool* whole_file)
     const uint64_t length = r.u32();
     const ChunkType type{{static_cast<char>(chunk_header[0]), static_cast<char>(chunk_header[1]),
                           static_cast<char>(chunk_header[2]), static_cast<char>(chunk_header[3])}};
-    // Only a tiled grid's header part is read this way: a first chunk other
-    // than GHDR, a coding other than 2 or a chunk of another kind before TIDX
-    // means the whole file is needed (readContainer says what is wrong).
-    const bool header_part = type == kChunkGridHeader || type == kChunkMeta || type == kChunkTiling ||
-                             type == kChunkTileIndex || !type.critical();
-    if (!header_part || (first && type != kChunkGridHeader) || length > kMaxChunkPayload) return readAll();
+    // Only the header part of a tiled grid, or of a wavelet-coded grid up to
+    // its WHDR, is read this way: a first chunk other than GHDR, another
+    // coding or a chunk of another kind means the whole file is needed
+    // (readContainer says what is wrong).
+    const bool header_part =
+        type == kChunkGridHeader || type == kChunkMeta || !type.critical() ||
+        (wavelet_grid ? type == kChunkWaveletHeader : type == kChunkTiling || type == kChunkTileIndex);
+    if (!header_part || (first && type != kChunkGridHeader) || length > kMaxChunkPayload) return whole();
     const uint64_t end = pos + kChunkHeaderSize + length + kChunkCrcSize;
-    if (end > size) return readAll();
+    if (end > size) return whole();
     head->resize(end);
     std::memcpy(head->data() + pos, chunk_header, kChunkHeaderSize);
     if (!source.read(pos + kChunkHeaderSize, length + kChunkCrcSize, head->data() + pos + kChunkHeaderSize))
       return ioError(pos, "a chunk");
-    if (first && (length < 3 || (*head)[pos + kChunkHeaderSize + 2] != static_cast<uint8_t>(GridCoding::kTiled)))
-      return readAll();
+    const uint8_t* payload = head->data() + pos + kChunkHeaderSize;
+    if (first) {
+      const uint8_t coding = length < 3 ? 0 : payload[2];
+      wavelet_grid = coding == static_cast<uint8_t>(GridCoding::kWavelet);
+      if (coding != static_cast<uint8_t>(GridCoding::kTiled) && !(wavelet_grid && precincts_allowed)) return whole();
+    }
     first = false;
     pos = end;
     if (type == kChunkTileIndex) return {};
+    if (type == kChunkWaveletHeader) {
+      if (length != kWaveletHeaderSize || payload[7] == 0) return whole();
+      *precincts = true;
+      return {};
+    }
   }
-  return readAll();
+  return whole();
 }
 
 // spec 2.3 framing of one tile chunk read at its index offset, by the
@@ -121,8 +145,25 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
                        DecodedGrid* out) {
   *out = DecodedGrid{};
   std::vector<uint8_t> head;
-  bool whole_file = false;
-  if (Error e = readHead(source, &head, &whole_file); !e.ok()) return e;
+  bool whole_file = false, precincts = false;
+  if (Error e = readHead(source, options.reduce_levels == 0, &head, &whole_file, &precincts); !e.ok()) return e;
+  if (precincts) {
+    // A wavelet-coded grid in precincts: the blocks the region reaches (spec
+    // 5.7.6). Should that way not read the stream, the whole file is decoded.
+    DecodeOptions head_options = options;
+    head_options.container.allow_partial_tail = true;
+    DecodedGrid parsed;
+    Error io;
+    if (decodeGrid(head.data(), head.size(), head_options, &parsed).ok() &&
+        regionProblem(region, parsed.header).empty() &&
+        decodePrecinctRegion(source, head.size(), parsed, region, options, out, &io)) {
+      forgetPayloads(out);
+      return {};
+    }
+    if (!io.ok()) return io;
+    if (Error e = readAll(source, &head); !e.ok()) return e;
+    whole_file = true;
+  }
   DecodeOptions head_options = options;
   if (!whole_file) head_options.container.allow_partial_tail = true;
   DecodedGrid parsed;

@@ -8,6 +8,7 @@ set(MRSV_WAVELET_DECODE_SOURCES
   reference/src/wavelet/axis_plan.cpp
   reference/src/wavelet/synthesis_fixed.cpp
   reference/src/wavelet/cdf97_fixed.cpp
+  reference/src/wavelet/window_synthesis.cpp
   reference/src/wavelet/cdf97_kernels.cpp
   reference/src/wavelet/cdf97_kernels_avx2.cpp
   reference/src/wavelet/cdf97_kernels_avx512.cpp)
@@ -17,7 +18,8 @@ set(MRSV_WAVELET_ENCODE_SOURCES
 set(MRSV_WAVELET_DECODE_TESTS
   reference/tests/wavelet_plan_test.cpp
   reference/tests/wavelet_fixed_test.cpp
-  reference/tests/wavelet_cdf97_kernels_test.cpp)
+  reference/tests/wavelet_cdf97_kernels_test.cpp
+  reference/tests/window_synthesis_test.cpp)
 set(MRSV_WAVELET_ENCODE_TESTS
   reference/tests/wavelet_transform_test.cpp
   reference/tests/wavelet_cdf97_test.cpp)
