@@ -277,6 +277,34 @@ with tempfile.TemporaryDirectory() as work:
         check("bad.mrsv: window 0,0 1201x1201" in r.stderr and "E113" in r.stderr,
               f"plugin, tiled: a damaged tile: {r.stderr.strip()[:200]}")
 
+        # A grid in precincts (spec 5.7.6): one block per precinct at full
+        # resolution, each read by region decoding; windows and the whole
+        # raster equal mrsv decode, the overviews its --levels.
+        prec = rb + "_p128.mrsv"
+        run(MRSV, "encode", "--quiet", "--precinct", "128", "--bits-per-sample", "1", rainier, prec)
+        run("gdal_translate", "-q", "-of", "MRSV", "-co", "PRECINCT=128", "-co", "RATE=1", rainier,
+            prec + ".gdal.mrsv", env=env)
+        check("precincts 128" in run(MRSV, "info", prec + ".gdal.mrsv").stdout,
+              "plugin, precincts: CreateCopy with PRECINCT=128")
+        r = run("gdal_translate", "-q", "-of", "MRSV", "-co", "PRECINCT=100", rainier, prec + ".bad.mrsv",
+                expect=1, env=env)
+        check("PRECINCT=100" in r.stderr and "power of two" in r.stderr,
+              f"plugin, precincts: PRECINCT=100: {r.stderr.strip()[:200]}")
+        p = info(prec, env=env)
+        check(p["bands"][0].get("block") == [128, 128], f"plugin, precincts: block {p['bands'][0].get('block')}")
+        run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", prec, out + "_pwin.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", prec, out + "_pregion.tif")
+        check(samples(out + "_pwin.tif", work, "h") == samples(out + "_pregion.tif", work, "h"),
+              "plugin, precincts: a window differs from mrsv decode --region")
+        run("gdal_translate", "-q", prec, out + "_prec.tif", env=env)
+        run(MRSV, "decode", "--quiet", prec, out + "_prec_m.tif")
+        check(samples(out + "_prec.tif", work, "h") == samples(out + "_prec_m.tif", work, "h"),
+              "plugin, precincts: the whole raster differs from mrsv decode")
+        run("gdal_translate", "-q", "-ovr", "0", prec, out + "_povr.tif", env=env)
+        run(MRSV, "decode", "--quiet", "--levels", "1", prec, out + "_pl1.tif")
+        check(samples(out + "_povr.tif", work, "h") == samples(out + "_pl1.tif", work, "h"),
+              "plugin, precincts: overview 1 differs from mrsv decode --levels 1")
+
         # Opening reads the header part only: a stream damaged in its last
         # chunk opens, its overviews read (their prefix is intact), and only
         # a read of the full resolution fails, naming the file and the rule.

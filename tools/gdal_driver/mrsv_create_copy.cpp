@@ -47,6 +47,9 @@ const char kMrsvCreationOptionList[] =
     "the smaller'><Value>AUTO</Value><Value>RESIDUAL</Value><Value>PREDICTIVE</Value></Option>"
     "<Option name='PREDICTION' type='string-select' default='AUTO' description='prediction of the "
     "coarsest block'><Value>AUTO</Value><Value>NEIGHBOUR</Value><Value>WEIGHTED</Value></Option>"
+    "<Option name='PRECINCT' type='int' description='every band in blocks of this many samples "
+    "per side (a power of two, 16 to 2^24; spec 5.7.6), so that a window is read from the blocks "
+    "that reach it'/>"
     "</CreationOptionList>";
 
 namespace {
@@ -126,8 +129,13 @@ class CreationOptions {
       w.order = mrsv::kWaveletOrderCdf97;
     }
     w.max_levels = static_cast<int>(levels);
+    if (const char* p = value("PRECINCT")) {
+      for (int k = mrsv::kMinPrecinctLog2; k <= mrsv::kMaxPrecinctLog2; ++k)
+        if (std::string(p) == std::to_string(1u << k)) w.precinct_log2 = k;
+      if (w.precinct_log2 == 0) return fail("PRECINCT", "must be a power of two from 16 to 16777216");
+    }
     if (*stored) {
-      for (const char* name : {"ORDER", "LEVELS", "MAX_ERROR", "RATE", "PSNR", "STEP"})
+      for (const char* name : {"ORDER", "LEVELS", "MAX_ERROR", "RATE", "PSNR", "STEP", "PRECINCT"})
         if (value(name)) return fail(name, "CODING=STORED takes no rate, quality or wavelet option");
     }
     return true;

@@ -8,7 +8,9 @@
 // A tiled grid (spec 11) is not read whole: opening reads its header part,
 // and each GDAL block is one tile, decoded by region decoding (11.5) from
 // the byte ranges of that tile only; overview k is the grid reduced by k
-// levels (11.6), one block per tile.
+// levels (11.6), one block per tile. A wavelet-coded grid in precincts
+// (5.7.6) is read the same way at full resolution, a block per precinct from
+// the blocks that reach it; its overviews are decoded from stream prefixes.
 #include "mrsv_driver.h"
 
 #include <gdal_pam.h>
@@ -54,6 +56,7 @@ struct Stream {
   std::vector<uint8_t> bytes;      // the first bytes.size() bytes of the file (not tiled grids)
   bool tiled = false;
   uint32_t tile_size[2] = {0, 0};  // tiled grids only
+  uint32_t precinct = 0;           // grids in precincts (spec 5.7.6): samples per precinct side
 
   // Reads the file up to `end` (at most its size); false, with a GDAL error
   // naming the file, on a read error.
@@ -79,8 +82,9 @@ class MrsvRasterBand final : public GDALPamRasterBand {
  public:
   MrsvRasterBand(MrsvDataset* ds, GDALDataType type);
   CPLErr IReadBlock(int block_x, int block_y, void* image) override;
-  // Tiled grids: a read of more than one tile is one region decode, its tiles
-  // decoded by all cores (spec 11.5), instead of a decode per block.
+  // Tiled grids (and grids in precincts): a read of more than one block is one
+  // region decode, tiles decoded by all cores (spec 11.5), instead of a decode
+  // per block.
   CPLErr IRasterIO(GDALRWFlag rw, int x, int y, int x_size, int y_size, void* buffer, int buffer_x, int buffer_y,
                    GDALDataType buffer_type, GSpacing pixel_space, GSpacing line_space,
                    GDALRasterIOExtraArg* extra) override;
@@ -111,14 +115,16 @@ class MrsvDataset final : public GDALPamDataset {
   // The samples of this resolution, decoded on first use; false (with a GDAL
   // error naming the file, once) when the stream cannot be decoded.
   bool decode();
-  // Tiled grids: the window of this resolution's positions [x, x + x_size) x
+  // Tiled grids, and grids in precincts at full resolution (byWindow()):
+  // the window of this resolution's positions [x, x + x_size) x
   // [y, y + y_size) by region decode (spec 11.5, 11.6) on `threads` threads,
   // samples in host order; false, with a GDAL error naming the file and the
   // window, when the stream cannot give it.
   bool decodeWindow(int x, int y, int x_size, int y_size, int threads, mrsv::DecodedGrid* grid);
-  // Tiled grids: block (x, y), one tile of this resolution.
+  // The same: block (x, y), one tile or precinct of this resolution.
   CPLErr readTile(int block_x, int block_y, void* image);
   bool tiled() const { return stream_->tiled; }
+  bool byWindow() const { return stream_->tiled || (stream_->precinct > 0 && reduce_ == 0); }
 
   std::shared_ptr<Stream> stream_;
   int reduce_ = 0;
@@ -141,6 +147,11 @@ MrsvRasterBand::MrsvRasterBand(MrsvDataset* ds, GDALDataType type) {
     nBlockYSize = static_cast<int>(std::max<uint32_t>(1, ds->stream_->tile_size[1] >> ds->reduce_));
     return;
   }
+  if (ds->byWindow()) {  // a block per precinct
+    nBlockXSize = static_cast<int>(std::min<uint32_t>(ds->stream_->precinct, ds->GetRasterXSize()));
+    nBlockYSize = static_cast<int>(std::min<uint32_t>(ds->stream_->precinct, ds->GetRasterYSize()));
+    return;
+  }
   // Whole rows: the samples are in memory once decoded, row after row.
   nBlockXSize = ds->GetRasterXSize();
   nBlockYSize = 1;
@@ -148,7 +159,7 @@ MrsvRasterBand::MrsvRasterBand(MrsvDataset* ds, GDALDataType type) {
 
 CPLErr MrsvRasterBand::IReadBlock(int block_x, int block_y, void* image) {
   auto* ds = static_cast<MrsvDataset*>(poDS);
-  if (ds->tiled()) return ds->readTile(block_x, block_y, image);
+  if (ds->byWindow()) return ds->readTile(block_x, block_y, image);
   if (!ds->decode()) return CE_Failure;
   const size_t bytes = GDALGetDataTypeSizeBytes(eDataType);
   const size_t row = static_cast<size_t>(nBlockXSize) * bytes;
@@ -165,7 +176,7 @@ CPLErr MrsvRasterBand::IRasterIO(GDALRWFlag rw, int x, int y, int x_size, int y_
   auto* ds = static_cast<MrsvDataset*>(poDS);
   const bool one_block = x / nBlockXSize == (x + x_size - 1) / nBlockXSize &&
                          y / nBlockYSize == (y + y_size - 1) / nBlockYSize;
-  if (rw != GF_Read || !ds->tiled() || one_block || x_size != buffer_x || y_size != buffer_y)
+  if (rw != GF_Read || !ds->byWindow() || one_block || x_size != buffer_x || y_size != buffer_y)
     return GDALPamRasterBand::IRasterIO(rw, x, y, x_size, y_size, buffer, buffer_x, buffer_y, buffer_type,
                                         pixel_space, line_space, extra);
   mrsv::DecodedGrid grid;
@@ -385,6 +396,8 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   stream->header = h;
   stream->wavelet = grid.wavelet;
   stream->metadata = std::move(grid.metadata);
+  if (h.coding == mrsv::GridCoding::kWavelet && grid.wavelet.precinct_log2 > 0)
+    stream->precinct = 1u << grid.wavelet.precinct_log2;
   const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
   std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, static_cast<size_t>(size)));
   // One overview per wavelet level that reaches the decoded bands (a stream
