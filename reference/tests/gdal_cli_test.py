@@ -88,6 +88,26 @@ def unzstd(name, work):
     return out
 
 
+def same_as_mrsv_decode(stream, out, overview, work, env, label):
+    """Through the plugin, a 200 x 150 window (samples and geotransform), the
+    whole raster and overview index `overview` of an int16 `stream` equal what
+    mrsv decode gives (--region, whole, --levels overview + 1)."""
+    run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", stream, out + "_win.tif", env=env)
+    run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", stream, out + "_region.tif")
+    check(samples(out + "_win.tif", work, "h") == samples(out + "_region.tif", work, "h"),
+          f"plugin, {label}: a window differs from mrsv decode --region")
+    check(close(info(out + "_win.tif")["geoTransform"], info(out + "_region.tif")["geoTransform"]),
+          f"plugin, {label}: a window's geotransform differs from mrsv decode --region")
+    run("gdal_translate", "-q", stream, out + "_whole.tif", env=env)
+    run(MRSV, "decode", "--quiet", stream, out + "_whole_m.tif")
+    check(samples(out + "_whole.tif", work, "h") == samples(out + "_whole_m.tif", work, "h"),
+          f"plugin, {label}: the whole raster differs from mrsv decode")
+    run("gdal_translate", "-q", "-ovr", str(overview), stream, out + "_ovr.tif", env=env)
+    run(MRSV, "decode", "--quiet", "--levels", str(overview + 1), stream, out + "_levels.tif")
+    check(samples(out + "_ovr.tif", work, "h") == samples(out + "_levels.tif", work, "h"),
+          f"plugin, {label}: overview {overview + 1} differs from mrsv decode --levels {overview + 1}")
+
+
 def round_trip(work, tif, raw_name, encode_options):
     """Encode and decode `tif`, compare everything gdalinfo and the samples say."""
     base = os.path.join(work, os.path.splitext(os.path.basename(tif))[0])
@@ -255,20 +275,7 @@ with tempfile.TemporaryDirectory() as work:
         tsizes = [o["size"] for o in tband.get("overviews", [])]
         check(tsizes == [[601, 601], [301, 301], [151, 151], [76, 76]],  # down to one block
               f"plugin, tiled: overviews {tsizes}")
-        run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", tiled, out + "_win.tif", env=env)
-        run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", tiled, out + "_region.tif")
-        check(samples(out + "_win.tif", work, "h") == samples(out + "_region.tif", work, "h"),
-              "plugin, tiled: a window differs from mrsv decode --region")
-        check(close(info(out + "_win.tif")["geoTransform"], info(out + "_region.tif")["geoTransform"]),
-              "plugin, tiled: a window's geotransform differs from mrsv decode --region")
-        run("gdal_translate", "-q", tiled, out + "_tiled.tif", env=env)
-        run(MRSV, "decode", "--quiet", tiled, out + "_tiled_m.tif")
-        check(samples(out + "_tiled.tif", work, "h") == samples(out + "_tiled_m.tif", work, "h"),
-              "plugin, tiled: the whole raster differs from mrsv decode")
-        run("gdal_translate", "-q", "-ovr", "2", tiled, out + "_tovr.tif", env=env)
-        run(MRSV, "decode", "--quiet", "--levels", "3", tiled, out + "_tl3.tif")
-        check(samples(out + "_tovr.tif", work, "h") == samples(out + "_tl3.tif", work, "h"),
-              "plugin, tiled: overview 3 differs from mrsv decode --levels 3")
+        same_as_mrsv_decode(tiled, out + "_t", 2, work, env, "tiled")
         with open(tiled, "rb") as f, open(tiled + ".bad.mrsv", "wb") as g:
             b = bytearray(f.read())
             b[-200] ^= 0xFF  # inside the last tile's chunks
@@ -292,18 +299,7 @@ with tempfile.TemporaryDirectory() as work:
               f"plugin, precincts: PRECINCT=100: {r.stderr.strip()[:200]}")
         p = info(prec, env=env)
         check(p["bands"][0].get("block") == [128, 128], f"plugin, precincts: block {p['bands'][0].get('block')}")
-        run("gdal_translate", "-q", "-srcwin", "300", "170", "200", "150", prec, out + "_pwin.tif", env=env)
-        run(MRSV, "decode", "--quiet", "--region", "300,170,500,320", prec, out + "_pregion.tif")
-        check(samples(out + "_pwin.tif", work, "h") == samples(out + "_pregion.tif", work, "h"),
-              "plugin, precincts: a window differs from mrsv decode --region")
-        run("gdal_translate", "-q", prec, out + "_prec.tif", env=env)
-        run(MRSV, "decode", "--quiet", prec, out + "_prec_m.tif")
-        check(samples(out + "_prec.tif", work, "h") == samples(out + "_prec_m.tif", work, "h"),
-              "plugin, precincts: the whole raster differs from mrsv decode")
-        run("gdal_translate", "-q", "-ovr", "0", prec, out + "_povr.tif", env=env)
-        run(MRSV, "decode", "--quiet", "--levels", "1", prec, out + "_pl1.tif")
-        check(samples(out + "_povr.tif", work, "h") == samples(out + "_pl1.tif", work, "h"),
-              "plugin, precincts: overview 1 differs from mrsv decode --levels 1")
+        same_as_mrsv_decode(prec, out + "_p", 0, work, env, "precincts")
 
         # Opening reads the header part only: a stream damaged in its last
         # chunk opens, its overviews read (their prefix is intact), and only
