@@ -260,5 +260,69 @@ TEST(Precincts, RegionsWithMaskResidualPrefixesAndVolumes) {
   }
 }
 
+// With reduce_levels K the region is the box's 2^K lattice (spec 11.6), as
+// the same stream without precincts (decoded whole, reduced, then cropped)
+// gives it at the same step.
+TEST(Precincts, ReducedRegionsEqualTheCroppedReducedWhole) {
+  struct Case {
+    test::SharedGrid grid;
+    WaveletEncodeOptions options;
+    int precinct_log2;
+  };
+  std::vector<Case> cases;
+  WaveletEncodeOptions step;
+  step.step = 5;
+  cases.push_back({load("terrain/mt_st_helens_317x460_int16le.raw.zst"), step, 6});
+  WaveletEncodeOptions linear = step;
+  linear.order = 2;
+  cases.push_back({load("terrain/mt_st_helens_317x460_int16le.raw.zst"), linear, 5});
+  WaveletEncodeOptions bounded;  // a residual, not applied at a reduced resolution
+  bounded.max_error = 2;
+  bounded.bound_route = WaveletEncodeOptions::BoundRoute::kResidual;
+  cases.push_back({stHelensWithVoids(), bounded, 4});
+  WaveletEncodeOptions two = step;  // fewer levels than K = 3
+  two.max_levels = 2;
+  cases.push_back({load("terrain/mt_st_helens_317x460_int16le.raw.zst"), two, 5});
+  // A 61 x 17 crop: more levels along x than along y.
+  test::SharedGrid strip = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
+  strip.header.size_x = 61;
+  strip.header.size_y = 17;
+  std::vector<uint8_t> cropped;
+  for (uint32_t y = 0; y < 17; ++y)
+    cropped.insert(cropped.end(), strip.samples.begin() + 2 * (y * 317), strip.samples.begin() + 2 * (y * 317 + 61));
+  strip.samples = cropped;
+  cases.push_back({strip, step, 4});
+  WaveletEncodeOptions volume;
+  volume.step = 3;
+  volume.max_levels = 3;
+  cases.push_back({load("volume/ct_head_vtk_headsq_64x64x93_uint16le.raw.zst"), volume, 4});
+  std::mt19937_64 rng(2026);
+  for (const Case& c : cases) {
+    const std::vector<uint8_t> plain = encode(c.grid, c.options, 0), blocked = encode(c.grid, c.options, c.precinct_log2);
+    const uint32_t n[3] = {c.grid.header.size_x, c.grid.header.size_y, c.grid.header.size_z};
+    for (int k = 1; k <= 3; ++k)
+      for (int trial = 0; trial < 8; ++trial) {
+        GridRegion r;
+        for (int a = 0; a < 3; ++a) {
+          uint32_t lo = static_cast<uint32_t>(rng() % n[a]), hi = static_cast<uint32_t>(rng() % n[a]);
+          if (lo > hi) std::swap(lo, hi);
+          r.lo[a] = lo;
+          r.hi[a] = std::min(n[a], hi + 1 + (1u << k));
+        }
+        DecodeOptions options;
+        options.reduce_levels = k;
+        MemoryByteSource a(plain.data(), plain.size()), b(blocked.data(), blocked.size());
+        DecodedGrid want, got;
+        Error ea = decodeGridRegion(a, r, options, &want), eb = decodeGridRegion(b, r, options, &got);
+        ASSERT_EQ(ea.ok(), eb.ok()) << ea.describe() << " / " << eb.describe();
+        if (!ea.ok()) continue;
+        ASSERT_TRUE(got.region_by_precincts);
+        for (int x = 0; x < 3; ++x) ASSERT_EQ(got.output_size[x], want.output_size[x]);
+        ASSERT_EQ(got.samples, want.samples) << "K " << k << " box " << r.lo[0] << "," << r.lo[1] << "," << r.lo[2]
+                                             << " .. " << r.hi[0] << "," << r.hi[1] << "," << r.hi[2];
+      }
+  }
+}
+
 }  // namespace
 }  // namespace mrsv

@@ -16,6 +16,7 @@
 #include "common/byte_reader.h"
 #include "grid/array_payload.h"
 #include "grid/precincts.h"
+#include "tiles/tile_decode.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/window_synthesis.h"
 
@@ -220,11 +221,26 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   const std::vector<wavelet::Band> bands = wavelet::bandsOf(plan);
   const int m = plan.maxLevels();
 
+  // The output: the positions p of the region's 2^K lattice (11.6), K =
+  // options.reduce_levels; along an axis of L levels the synthesis stops at
+  // K_a = min(K, L) and position p is value p >> K_a there (5.8.3).
+  const int k = options.reduce_levels;
+  const int stop = std::min(k, m);  // the synthesis runs levels m .. stop + 1
+  uint32_t out_count[3], first[3], shift[3];
+  regionOutputSize(region, k, out_count);
+  for (int a = 0; a < 3; ++a) {
+    if (out_count[a] == 0) return false;  // no lattice position in the box: as the whole decode says
+    first[a] = static_cast<uint32_t>((uint64_t{region.lo[a]} + (uint64_t{1} << k) - 1) >> k << k);
+    shift[a] = static_cast<uint32_t>(std::min(k, plan.axis[a].levels));
+  }
   // The windows: low[j] (the outputs of level j + 1, the low part of level j)
   // and high[j] per axis; an axis not split at j passes its window through.
   std::vector<Ranges> low(m + 1), high(m + 1);
-  for (int a = 0; a < 3; ++a) low[0][a] = a < g.num_dims ? Range{region.lo[a], region.hi[a]} : Range{0, 1};
-  for (int j = 1; j <= m; ++j)
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t last = first[a] + (uint64_t{out_count[a]} - 1) * (uint64_t{1} << k);
+    low[stop][a] = {first[a] >> shift[a], static_cast<uint32_t>((last >> shift[a]) + 1)};
+  }
+  for (int j = stop + 1; j <= m; ++j)
     for (int a = 0; a < 3; ++a) {
       if (plan.axis[a].levels < j) {
         low[j][a] = low[j - 1][a];
@@ -234,9 +250,11 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       low[j][a] = {in.low0, in.low1};
       high[j][a] = {in.high0, in.high1};
     }
+  // (Detail bands of the levels not synthesised are not needed.)
   auto bandNeed = [&](const wavelet::Band& b) {
     Ranges r;
-    for (int a = 0; a < 3; ++a) r[a] = (b.mask >> a) & 1 ? high[b.level][a] : low[b.level][a];
+    for (int a = 0; a < 3; ++a)
+      r[a] = b.mask != 0 && b.level <= stop ? Range{} : (b.mask >> a) & 1 ? high[b.level][a] : low[b.level][a];
     return r;
   };
   // The mask and the residual over the whole blocks (of the level-0 block
@@ -250,14 +268,14 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   blockGrid(grid_box, full_resolution, wh.precinct_log2, edge, count);
   Ranges cover;
   for (int a = 0; a < 3; ++a)
-    cover[a] = {low[0][a].lo / edge[a] * edge[a],
-                static_cast<uint32_t>(std::min<uint64_t>(samples[a], ((low[0][a].hi - 1) / edge[a] + 1) * uint64_t{edge[a]}))};
+    cover[a] = {region.lo[a] / edge[a] * edge[a],
+                static_cast<uint32_t>(std::min<uint64_t>(samples[a], ((region.hi[a] - 1) / edge[a] + 1) * uint64_t{edge[a]}))};
 
   BlockedArrayReader reader(source, wh.entropy_mode, wh.precinct_log2);
   Window mask, residual;
   std::vector<Window> band_values(bands.size());
   uint32_t bands_read = 0, residual_step = 0;
-  bool mask_read = false, residual_read = false, complete = false;
+  bool mask_read = false, residual_seen = false, residual_read = false, complete = false;
   const uint64_t size = source.size();
   for (uint64_t pos = next; pos + kChunkHeaderSize <= size;) {
     ChunkHeader h;
@@ -300,7 +318,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       const wavelet::Band& band = bands[index];
       const Ranges need = bandNeed(band);
       band_values[index].make(need);
-      if (step != 0) {
+      if (step != 0 && band_values[index].v.size() > 0) {
         ArrayBox box;
         box.num_dims = g.num_dims;
         std::copy(band.size, band.size + 3, box.size);
@@ -313,7 +331,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       }
       ++bands_read;
     } else if (h.type == kChunkResidual) {
-      if (!wh.hasResidual() || residual_read || bands_read != bands.size() || h.length < kResidualHeaderSize)
+      if (!wh.hasResidual() || residual_seen || bands_read != bands.size() || h.length < kResidualHeaderSize)
         return false;
       uint8_t header[kResidualHeaderSize];
       if (!source.read(q, kResidualHeaderSize, header)) {
@@ -323,6 +341,11 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       ByteReader r(header, kResidualHeaderSize);
       residual_step = r.u32();
       if (residual_step < 1 || residual_step > kMaxResidualStep) return false;
+      residual_seen = true;
+      if (k > 0) {  // not applied at a reduced resolution (5.8.3)
+        pos = end;
+        continue;
+      }
       residual.make(cover);
       if (!reader.read(q + kResidualHeaderSize, h.length - kResidualHeaderSize, "GRES", grid_box, full_resolution,
                        ArrayPrediction::kNone, 0, cover, cover, mask_read ? &mask : nullptr, &residual, io_error))
@@ -333,7 +356,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
     }
     pos = end;
   }
-  if (complete && (bands_read != bands.size() || (wh.hasResidual() && !residual_read))) return false;
+  if (complete && (bands_read != bands.size() || (wh.hasResidual() && !residual_seen))) return false;
 
   *out = DecodedGrid{};
   out->container = parsed.container;
@@ -342,15 +365,15 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   out->wavelet = wh;
   out->bands_total = static_cast<uint32_t>(bands.size());
   out->bands_decoded = bands_read;
-  out->residual_decoded = residual_read;
+  out->residual_decoded = residual_seen;
   out->region_by_precincts = true;
-  for (int a = 0; a < 3; ++a) out->output_size[a] = low[0][a].size();
+  std::copy(out_count, out_count + 3, out->output_size);
   if (bands_read == 0) return true;  // a prefix without samples
   // Coarse to fine: the scaling block's window, then per level the detail
   // bands beside it and the passes x, y, z of the axes split there.
   for (size_t b = bands_read; b < bands.size(); ++b) band_values[b].make(bandNeed(bands[b]));
   Window current = std::move(band_values[0]), passed;
-  for (int j = m; j >= 1; --j) {
+  for (int j = m; j > stop; --j) {
     uint32_t sizes[3];
     for (int a = 0; a < 3; ++a) sizes[a] = low[j][a].size() + high[j][a].size();
     Window in;
@@ -370,19 +393,26 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
     }
     current = std::move(in);
   }
-  // spec 5.8.2 over the box.
+  // spec 5.8.2 over the lattice positions p of the box: the value p >> K_a
+  // of the synthesised window, the mask (and at full resolution the residual)
+  // at p.
   const size_t bytes = sampleSize(g.sample_type);
-  out->samples.resize(current.v.size() * bytes);
+  out->samples.resize(uint64_t{out_count[0]} * out_count[1] * out_count[2] * bytes);
   uint8_t* dst = out->samples.data();
-  for (uint32_t z = low[0][2].lo; z < low[0][2].hi; ++z)
-    for (uint32_t y = low[0][1].lo; y < low[0][1].hi; ++y)
-      for (uint32_t x = low[0][0].lo; x < low[0][0].hi; ++x, dst += bytes) {
-        // The mask and the residual cover the same blocks (when there are both).
-        const uint64_t cx = x - cover[0].lo, cy = y - cover[1].lo, cz = z - cover[2].lo;
-        sampleOfValue(g, wh, current.v[current.index(x - low[0][0].lo, y - low[0][1].lo, z - low[0][2].lo)],
-                      mask_read && !options.void_values && mask.v[mask.index(cx, cy, cz)] != 0,
-                      residual_read ? residual.v[residual.index(cx, cy, cz)] : 0, residual_read ? residual_step : 0,
-                      dst);
+  const uint32_t step = 1u << k;
+  for (uint32_t i2 = 0; i2 < out_count[2]; ++i2)
+    for (uint32_t i1 = 0; i1 < out_count[1]; ++i1)
+      for (uint32_t i0 = 0; i0 < out_count[0]; ++i0, dst += bytes) {
+        const uint32_t p[3] = {first[0] + i0 * step, first[1] + i1 * step, first[2] + i2 * step};
+        uint64_t v[3], c[3];
+        for (int a = 0; a < 3; ++a) {
+          v[a] = (p[a] >> shift[a]) - low[stop][a].lo;
+          c[a] = p[a] - cover[a].lo;  // the mask and the residual cover the same blocks
+        }
+        sampleOfValue(g, wh, current.v[current.index(v[0], v[1], v[2])],
+                      mask_read && !options.void_values && mask.v[mask.index(c[0], c[1], c[2])] != 0,
+                      residual_read ? residual.v[residual.index(c[0], c[1], c[2])] : 0,
+                      residual_read ? residual_step : 0, dst);
       }
   out->has_samples = true;
   return true;

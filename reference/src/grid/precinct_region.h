@@ -11,9 +11,9 @@
 namespace mrsv {
 
 // The region of the grid `parsed` (the file up to the end of its WHDR, which
-// has precincts, decoded as a prefix; the next chunk at `next`) at full
-// resolution: the caller takes this way only without reduce_levels;
-// options.void_values is read. Returns false, with *out untouched, when the
+// has precincts, decoded as a prefix; the next chunk at `next`), at full
+// resolution or options.reduce_levels above it (the lattice of spec 11.6, as
+// a whole decode cropped gives it); options.void_values is read. Returns false, with *out untouched, when the
 // stream holds anything a region decoder does not read its way (a chunk out
 // of order, a table that does not add up, a block that does not decode): the
 // caller then decodes the whole file, which reports the first broken rule as

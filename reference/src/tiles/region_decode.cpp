@@ -25,12 +25,10 @@ Error readAll(ByteSource& source, std::vector<uint8_t>* head) {
 }
 
 // The bytes from the start of the file to the end of TIDX, or for a
-// wavelet-coded grid in precincts (with `precincts_allowed`) to the end of
-// WHDR (*precincts then set), read chunk by chunk so that readContainer frames
+// wavelet-coded grid in precincts to the end of WHDR (*precincts then set), read chunk by chunk so that readContainer frames
 // them with the offsets of the file; otherwise (or when the header part is
 // cut short) the whole file.
-Error readHead(ByteSource& source, bool precincts_allowed, std::vector<uint8_t>* head, bool* whole_file,
-               bool* precincts) {
+Error readHead(ByteSource& source, std::vector<uint8_t>* head, bool* whole_file, bool* precincts) {
   *whole_file = false;
   *precincts = false;
   const uint64_t size = source.size();
@@ -70,7 +68,7 @@ Error readHead(ByteSource& source, bool precincts_allowed, std::vector<uint8_t>*
     if (first) {
       const uint8_t coding = length < 3 ? 0 : payload[2];
       wavelet_grid = coding == static_cast<uint8_t>(GridCoding::kWavelet);
-      if (coding != static_cast<uint8_t>(GridCoding::kTiled) && !(wavelet_grid && precincts_allowed)) return whole();
+      if (coding != static_cast<uint8_t>(GridCoding::kTiled) && !wavelet_grid) return whole();
     }
     first = false;
     pos = end;
@@ -146,7 +144,7 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
   *out = DecodedGrid{};
   std::vector<uint8_t> head;
   bool whole_file = false, precincts = false;
-  if (Error e = readHead(source, options.reduce_levels == 0, &head, &whole_file, &precincts); !e.ok()) return e;
+  if (Error e = readHead(source, &head, &whole_file, &precincts); !e.ok()) return e;
   if (precincts) {
     // A wavelet-coded grid in precincts: the blocks the region reaches (spec
     // 5.7.6). Should that way not read the stream, the whole file is decoded.
