@@ -9,8 +9,9 @@
 // and each GDAL block is one tile, decoded by region decoding (11.5) from
 // the byte ranges of that tile only; overview k is the grid reduced by k
 // levels (11.6), one block per tile. A wavelet-coded grid in precincts
-// (5.7.6) is read the same way at full resolution, a block per precinct from
-// the blocks that reach it; its overviews are decoded from stream prefixes.
+// (5.7.6) is read the same way, a block of 2^P positions at a time from the
+// blocks that reach it: at full resolution and, for the 9/7 wavelet, at the
+// overviews whose size is the lattice's; other overviews come from prefixes.
 #include "mrsv_driver.h"
 
 #include <gdal_pam.h>
@@ -57,6 +58,10 @@ struct Stream {
   bool tiled = false;
   uint32_t tile_size[2] = {0, 0};  // tiled grids only
   uint32_t precinct = 0;           // grids in precincts (spec 5.7.6): samples per precinct side
+  // The resolutions of a grid in precincts read by window: the full one and,
+  // for the 9/7 wavelet, the overviews up to the fewest levels of an axis
+  // (there the overview's size is the 2^K lattice's, spec 5.8.3 and 11.6).
+  int precinct_levels = 0;
 
   // Reads the file up to `end` (at most its size); false, with a GDAL error
   // naming the file, on a read error.
@@ -115,7 +120,7 @@ class MrsvDataset final : public GDALPamDataset {
   // The samples of this resolution, decoded on first use; false (with a GDAL
   // error naming the file, once) when the stream cannot be decoded.
   bool decode();
-  // Tiled grids, and grids in precincts at full resolution (byWindow()):
+  // Tiled grids, and grids in precincts (byWindow()):
   // the window of this resolution's positions [x, x + x_size) x
   // [y, y + y_size) by region decode (spec 11.5, 11.6) on `threads` threads,
   // samples in host order; false, with a GDAL error naming the file and the
@@ -124,7 +129,7 @@ class MrsvDataset final : public GDALPamDataset {
   // The same: block (x, y), one tile or precinct of this resolution.
   CPLErr readTile(int block_x, int block_y, void* image);
   bool tiled() const { return stream_->tiled; }
-  bool byWindow() const { return stream_->tiled || (stream_->precinct > 0 && reduce_ == 0); }
+  bool byWindow() const { return stream_->tiled || (stream_->precinct > 0 && reduce_ <= stream_->precinct_levels); }
 
   std::shared_ptr<Stream> stream_;
   int reduce_ = 0;
@@ -396,8 +401,12 @@ GDALDataset* MrsvDataset::Open(GDALOpenInfo* info) {
   stream->header = h;
   stream->wavelet = grid.wavelet;
   stream->metadata = std::move(grid.metadata);
-  if (h.coding == mrsv::GridCoding::kWavelet && grid.wavelet.precinct_log2 > 0)
+  if (h.coding == mrsv::GridCoding::kWavelet && grid.wavelet.precinct_log2 > 0) {
     stream->precinct = 1u << grid.wavelet.precinct_log2;
+    if (grid.wavelet.order == mrsv::kWaveletOrderCdf97)
+      stream->precinct_levels = h.num_dims > 1 ? std::min(grid.wavelet.levels[0], grid.wavelet.levels[1])
+                                               : grid.wavelet.levels[0];
+  }
   const uint32_t full[2] = {h.size_x, h.num_dims > 1 ? h.size_y : 1};
   std::unique_ptr<MrsvDataset> ds(new MrsvDataset(stream, 0, full, static_cast<size_t>(size)));
   // One overview per wavelet level that reaches the decoded bands (a stream
