@@ -55,6 +55,13 @@ struct ChunkHeader {
   uint32_t length;
 };
 
+// spec 2.3: four ASCII letters.
+bool validChunkType(const ChunkType& t) {
+  for (char c : t.c)
+    if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'))) return false;
+  return true;
+}
+
 bool readChunkHeader(ByteSource& source, uint64_t pos, ChunkHeader* out, Error* io_error) {
   uint8_t h[kChunkHeaderSize];
   if (!source.read(pos, kChunkHeaderSize, h)) {
@@ -75,8 +82,10 @@ bool readChunkHeader(ByteSource& source, uint64_t pos, ChunkHeader* out, Error* 
 // table does not add up or a block does not decode.
 class BlockedArrayReader {
  public:
-  BlockedArrayReader(ByteSource& source, uint8_t entropy_mode, int precinct_log2)
-      : source_(source), entropy_mode_(entropy_mode), precinct_log2_(precinct_log2) {}
+  // `limit`: the decoder's memory limit (DecodeOptions::max_output_bytes); a
+  // block needing more is not decoded here (the whole decode reports 901).
+  BlockedArrayReader(ByteSource& source, uint8_t entropy_mode, int precinct_log2, uint64_t limit)
+      : source_(source), entropy_mode_(entropy_mode), precinct_log2_(precinct_log2), limit_(limit) {}
 
   bool read(uint64_t at, uint64_t size, const char* field, const ArrayBox& box, const int resolution[3],
             ArrayPrediction prediction, uint64_t step, const Ranges& need, const Ranges& dst_ranges,
@@ -127,9 +136,12 @@ class BlockedArrayReader {
   bool decodeBlock(uint64_t offset, const char* field, const ArrayBlock& block, ArrayPrediction prediction,
                    const Window* skip, const Ranges& ranges) {
     const uint64_t count = block.box.count();
+    if (count > limit_ / 27) return false;
     values_.resize(count);
     magnitudes_.resize(count);
-    symbols_.resize(prediction == ArrayPrediction::kWeighted ? 2 * uint64_t{block.box.size[0]} : count);
+    symbols_.resize(prediction == ArrayPrediction::kWeighted ? 2 * uint64_t{block.box.size[0]}
+                    : prediction == ArrayPrediction::kNone   ? 0
+                                                             : count);
     const uint8_t* skipped = nullptr;
     if (skip) {
       skip_.resize(count);
@@ -169,6 +181,7 @@ class BlockedArrayReader {
   ByteSource& source_;
   uint8_t entropy_mode_;
   int precinct_log2_;
+  uint64_t limit_;
   std::vector<uint8_t> table_, bytes_, skip_;
   std::vector<uint64_t> offsets_;
   std::vector<int64_t> values_, symbols_;
@@ -225,6 +238,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   // options.reduce_levels; along an axis of L levels the synthesis stops at
   // K_a = min(K, L) and position p is value p >> K_a there (5.8.3).
   const int k = options.reduce_levels;
+  if (k < 0 || k > wavelet::kMaxLevels) return false;
   const int stop = std::min(k, m);  // the synthesis runs levels m .. stop + 1
   uint32_t out_count[3], first[3], shift[3];
   regionOutputSize(region, k, out_count);
@@ -251,6 +265,15 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       high[j][a] = {in.high0, in.high1};
     }
   // (Detail bands of the levels not synthesised are not needed.)
+  // Every window, like the whole decode's arrays, within the memory limit.
+  auto fits = [&](const Ranges& r) {
+    return uint64_t{r[0].size()} * r[1].size() * r[2].size() <= options.max_output_bytes / 16;
+  };
+  for (int j = stop; j <= m; ++j) {
+    Ranges both = low[j];
+    for (int a = 0; a < 3; ++a) both[a].hi += high[j][a].size();
+    if (!fits(both)) return false;
+  }
   auto bandNeed = [&](const wavelet::Band& b) {
     Ranges r;
     for (int a = 0; a < 3; ++a)
@@ -271,7 +294,8 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
     cover[a] = {region.lo[a] / edge[a] * edge[a],
                 static_cast<uint32_t>(std::min<uint64_t>(samples[a], ((region.hi[a] - 1) / edge[a] + 1) * uint64_t{edge[a]}))};
 
-  BlockedArrayReader reader(source, wh.entropy_mode, wh.precinct_log2);
+  if (!fits(cover)) return false;
+  BlockedArrayReader reader(source, wh.entropy_mode, wh.precinct_log2, options.max_output_bytes);
   Window mask, residual;
   std::vector<Window> band_values(bands.size());
   uint32_t bands_read = 0, residual_step = 0;
@@ -287,7 +311,11 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       if (!complete) return false;
       break;
     }
-    if (end > size) break;  // a prefix: this chunk has not arrived
+    if (!validChunkType(h.type)) return false;  // the whole decode names the rule
+    if (end > size) {
+      if (!options.container.allow_partial_tail) return false;
+      break;  // a prefix: this chunk has not arrived
+    }
     const uint64_t q = pos + kChunkHeaderSize;
     if (h.type == kChunkMeta || !h.type.critical()) {
     } else if (h.type == kChunkNodataMask) {
@@ -342,7 +370,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       residual_step = r.u32();
       if (residual_step < 1 || residual_step > kMaxResidualStep) return false;
       residual_seen = true;
-      if (k > 0) {  // not applied at a reduced resolution (5.8.3)
+      if (stop > 0) {  // not applied at a reduced resolution (5.8.3)
         pos = end;
         continue;
       }

@@ -76,7 +76,7 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
     if (h.value_scale != 0)
       return fail(Status::kBadWaveletHeader, 16, "value_scale", "must be 0 for integer samples");
   }
-  // spec 5.2 check 11: each used axis has a plan (4.3, 4.11.1), reported at its levels byte.
+  // spec 5.2 check 12: each used axis has a plan (4.3, 4.11.1), reported at its levels byte.
   const uint32_t samples[3] = {grid.size_x, grid.size_y, grid.size_z};
   for (int a = 0; a < grid.num_dims; ++a) {
     wavelet::AxisPlan axis;
@@ -88,7 +88,7 @@ Error parseWaveletHeader(const ChunkView& chunk, const GridHeader& grid, Wavelet
   wavelet::GridPlan plan;
   if (!wavelet::makeGridPlan(grid.num_dims, samples, h.order, levels, &plan))
     return fail(Status::kBadWaveletHeader, 1, "levels", "no decomposition of this grid (spec 4.3)");
-  // spec 5.2 check 12: the padded array, reported at the first levels byte.
+  // spec 5.2 check 13: the padded array, reported at the first levels byte.
   if (plan.paddedCount() > kMaxGridSamples)
     return fail(Status::kBadWaveletHeader, 1, "levels", "padded grid above 2^32 samples");
   *out = h;

@@ -2,6 +2,7 @@
 // chunks of the tiles a region touches, read by offset; nothing else.
 #include <algorithm>
 #include <cstring>
+#include <new>
 
 #include "common/byte_reader.h"
 #include "bitstream/container_framer.h"
@@ -152,9 +153,15 @@ Error decodeGridRegion(ByteSource& source, const GridRegion& region, const Decod
     head_options.container.allow_partial_tail = true;
     DecodedGrid parsed;
     Error io;
-    if (decodeGrid(head.data(), head.size(), head_options, &parsed).ok() &&
-        regionProblem(region, parsed.header).empty() &&
-        decodePrecinctRegion(source, head.size(), parsed, region, options, out, &io)) {
+    bool decoded = false;
+    try {
+      decoded = decodeGrid(head.data(), head.size(), head_options, &parsed).ok() &&
+                regionProblem(region, parsed.header).empty() &&
+                decodePrecinctRegion(source, head.size(), parsed, region, options, out, &io);
+    } catch (const std::bad_alloc&) {
+      decoded = false;  // the whole decode says what the memory allows (901)
+    }
+    if (decoded) {
       forgetPayloads(out);
       return {};
     }
