@@ -288,8 +288,8 @@ with tempfile.TemporaryDirectory() as work:
         # resolution, each read by region decoding; windows and the whole
         # raster equal mrsv decode, the overviews its --levels.
         prec = rb + "_p128.mrsv"
-        run(MRSV, "encode", "--quiet", "--precinct", "128", "--bits-per-sample", "1", rainier, prec)
-        run("gdal_translate", "-q", "-of", "MRSV", "-co", "PRECINCT=128", "-co", "RATE=1", rainier,
+        run(MRSV, "encode", "--quiet", "--precinct", "128", "--step", "8", rainier, prec)
+        run("gdal_translate", "-q", "-of", "MRSV", "-co", "PRECINCT=128", "-co", "STEP=8", rainier,
             prec + ".gdal.mrsv", env=env)
         check("precincts 128" in run(MRSV, "info", prec + ".gdal.mrsv").stdout,
               "plugin, precincts: CreateCopy with PRECINCT=128")

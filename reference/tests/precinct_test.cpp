@@ -227,12 +227,12 @@ TEST(Precincts, RegionsEqualTheWholeDecode) {
     const float f = static_cast<float>(v) / 0.3048f;
     std::memcpy(feet.samples.data() + 4 * i, &f, 4);
   }
-  WaveletEncodeOptions psnr;
-  psnr.psnr = 60;
-  expectRegionsMatch(encode(feet, psnr, 6), 12, 13);
-  WaveletEncodeOptions rate;  // weighted prediction of a coarse block, blocks of length 0
-  rate.bits_per_sample = 0.5;
-  expectRegionsMatch(encode(g, rate, 5), 12, 3);
+  WaveletEncodeOptions fine;
+  fine.step = 2;
+  expectRegionsMatch(encode(feet, fine, 6), 12, 13);
+  WaveletEncodeOptions coarse;  // blocks of length 0 at the fine levels
+  coarse.step = 60;
+  expectRegionsMatch(encode(g, coarse, 5), 12, 3);
 }
 
 TEST(Precincts, RegionsWithMaskResidualPrefixesAndVolumes) {
