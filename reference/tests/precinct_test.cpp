@@ -354,8 +354,9 @@ TEST(Precincts, ReducedRegionsEqualTheCroppedReducedWhole) {
         ASSERT_EQ(ea.ok(), eb.ok()) << ea.describe() << " / " << eb.describe();
         if (!ea.ok()) continue;
         // (A box without a lattice position is left to the whole decode.)
-        if (want.output_size[0] * want.output_size[1] * want.output_size[2] > 0)
+        if (want.output_size[0] * want.output_size[1] * want.output_size[2] > 0) {
           ASSERT_TRUE(got.region_by_precincts) << "K " << k;
+        }
         for (int x = 0; x < 3; ++x) ASSERT_EQ(got.output_size[x], want.output_size[x]);
         ASSERT_EQ(got.samples, want.samples) << "K " << k << " box " << r.lo[0] << "," << r.lo[1] << "," << r.lo[2]
                                              << " .. " << r.hi[0] << "," << r.hi[1] << "," << r.hi[2];

@@ -55,7 +55,7 @@ TEST(WindowSynthesis, EveryWindowEqualsTheWholeLine) {
           for (uint32_t i = in.low0; i < in.low1; ++i) line[i] = data[i];
           for (uint32_t i = in.high0; i < in.high1; ++i) line[w.low() + i] = data[w.low() + i];
           out.assign(b - a, 0);
-          w.synthesize(line.data() + in.low0, line.data() + w.low() + in.high0, a, b, out.data(), &scratch);
+          w.synthesize(in, line.data() + in.low0, line.data() + w.low() + in.high0, a, b, out.data(), &scratch);
           for (uint32_t i = a; i < b; ++i)
             ASSERT_EQ(out[i - a], whole[i]) << "order " << order << " n " << n << " level " << j
                                             << " window " << a << ".." << b << " at " << i;

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstring>
 
+#include "bitstream/container_framer.h"
 #include "common/byte_reader.h"
 #include "grid/array_payload.h"
 #include "grid/precincts.h"
@@ -50,29 +51,17 @@ Error ioError(uint64_t offset, const std::string& what) {
   return Error{Status::kIoError, offset, "file", "cannot read " + what};
 }
 
-struct ChunkHeader {
-  ChunkType type;
-  uint32_t length;
-};
-
-// spec 2.3: four ASCII letters.
-bool validChunkType(const ChunkType& t) {
-  for (char c : t.c)
-    if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'))) return false;
-  return true;
-}
-
-bool readChunkHeader(ByteSource& source, uint64_t pos, ChunkHeader* out, Error* io_error) {
+// The 8-byte chunk header at `pos`, framed by the container's own rules
+// (spec 2.3: type syntax, length limit). False on an I/O error (*io_error
+// set) or a framing error (left to the whole decode, which reports it).
+bool readChunkHeader(ByteSource& source, uint64_t pos, ContainerFramer& framer, ChunkView* out,
+                     Error* io_error) {
   uint8_t h[kChunkHeaderSize];
   if (!source.read(pos, kChunkHeaderSize, h)) {
     *io_error = ioError(pos, "a chunk header");
     return false;
   }
-  out->type = ChunkType{{static_cast<char>(h[0]), static_cast<char>(h[1]), static_cast<char>(h[2]),
-                         static_cast<char>(h[3])}};
-  ByteReader r(h + 4, 4);
-  out->length = r.u32();
-  return true;
+  return framer.chunkHeader(h, pos, out).ok();
 }
 
 // The blocks of one blocked array that meet `need` (ranges of the array's
@@ -99,13 +88,7 @@ class BlockedArrayReader {
       *io_error = ioError(at, "a table of block lengths");
       return false;
     }
-    offsets_.resize(n + 1);
-    offsets_[0] = 0;
-    for (uint64_t b = 0; b < n; ++b) {
-      ByteReader r(table_.data() + 4 * b, 4);
-      offsets_[b + 1] = offsets_[b] + r.u32();
-    }
-    if (offsets_[n] != size - 4 * n) return false;
+    if (!blockOffsets(table_.data(), n, size, &offsets_)) return false;
     uint32_t first[3], last[3];  // the blocks meeting `need`, inclusive
     for (int a = 0; a < 3; ++a) {
       if (need[a].lo >= need[a].hi) return true;
@@ -189,8 +172,9 @@ class BlockedArrayReader {
 };
 
 // One pass of level j along axis a over the window `in` (along a: the low
-// range, then the high range), giving `out` over the outputs `want` along a.
-void synthesizeAxis(const wavelet::WindowLine& line, int a, uint32_t low_count, const Range& want,
+// range, then the high range, the inputs `inputs` of the outputs `want`),
+// giving `out` over `want` along a.
+void synthesizeAxis(const wavelet::WindowLine& line, int a, const wavelet::WindowInputs& inputs, const Range& want,
                     const Window& in, Window* out) {
   uint32_t sizes[3] = {in.n[0], in.n[1], in.n[2]};
   sizes[a] = want.size();
@@ -205,7 +189,8 @@ void synthesizeAxis(const wavelet::WindowLine& line, int a, uint32_t low_count, 
       pos[a] = 0;
       const int64_t* src = in.v.data() + in.index(pos[0], pos[1], pos[2]);
       for (uint32_t i = 0; i < in.n[a]; ++i) values[i] = src[i * stride_in];
-      line.synthesize(values.data(), values.data() + low_count, want.lo, want.hi, result.data(), &scratch);
+      line.synthesize(inputs, values.data(), values.data() + (inputs.low1 - inputs.low0), want.lo, want.hi,
+                      result.data(), &scratch);
       int64_t* dst = out->v.data() + out->index(pos[0], pos[1], pos[2]);
       for (uint32_t i = 0; i < want.size(); ++i) dst[i * stride_out] = result[i];
     }
@@ -213,11 +198,10 @@ void synthesizeAxis(const wavelet::WindowLine& line, int a, uint32_t low_count, 
 
 // Copies `src` into `dst` at offsets `at` (src fits).
 void paste(const Window& src, const uint32_t at[3], Window* dst) {
-  for (uint32_t z = 0; z < src.n[2]; ++z)
-    for (uint32_t y = 0; y < src.n[1]; ++y) {
-      const int64_t* s = src.v.data() + src.index(0, y, z);
-      std::copy(s, s + src.n[0], dst->v.data() + dst->index(at[0], y + at[1], z + at[2]));
-    }
+  ArrayBlock place;
+  std::copy(at, at + 3, place.origin);
+  std::copy(src.n, src.n + 3, place.box.size);
+  copyBlockIn(src.v.data(), place, dst->v.data(), dst->n[0], size_t{dst->n[0]} * dst->n[1]);
 }
 
 }  // namespace
@@ -292,7 +276,8 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   Ranges cover;
   for (int a = 0; a < 3; ++a)
     cover[a] = {region.lo[a] / edge[a] * edge[a],
-                static_cast<uint32_t>(std::min<uint64_t>(samples[a], ((region.hi[a] - 1) / edge[a] + 1) * uint64_t{edge[a]}))};
+                static_cast<uint32_t>(
+                    std::min<uint64_t>(samples[a], ((region.hi[a] - 1) / edge[a] + 1) * uint64_t{edge[a]}))};
 
   if (!fits(cover)) return false;
   BlockedArrayReader reader(source, wh.entropy_mode, wh.precinct_log2, options.max_output_bytes);
@@ -301,34 +286,33 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
   uint32_t bands_read = 0, residual_step = 0;
   bool mask_read = false, residual_seen = false, residual_read = false, complete = false;
   const uint64_t size = source.size();
+  ContainerFramer framer(options.container);
   for (uint64_t pos = next; pos + kChunkHeaderSize <= size;) {
-    ChunkHeader h;
-    if (!readChunkHeader(source, pos, &h, io_error)) return false;
-    const uint64_t end = pos + kChunkHeaderSize + uint64_t{h.length} + kChunkCrcSize;
-    if (h.length > kMaxChunkPayload) return false;
-    if (h.type == kChunkEnd) {
-      complete = h.length == 0 && end == size;
+    ChunkView h;
+    if (!readChunkHeader(source, pos, framer, &h, io_error)) return false;
+    const uint64_t end = h.endOffset();
+    if (h.chunk_type == kChunkEnd) {
+      complete = h.chunk_length == 0 && end == size;
       if (!complete) return false;
       break;
     }
-    if (!validChunkType(h.type)) return false;  // the whole decode names the rule
     if (end > size) {
       if (!options.container.allow_partial_tail) return false;
       break;  // a prefix: this chunk has not arrived
     }
     const uint64_t q = pos + kChunkHeaderSize;
-    if (h.type == kChunkMeta || !h.type.critical()) {
-    } else if (h.type == kChunkNodataMask) {
+    if (h.chunk_type == kChunkMeta || !h.chunk_type.critical()) {
+    } else if (h.chunk_type == kChunkNodataMask) {
       if (!wh.hasMask() || mask_read || bands_read > 0) return false;
       mask.make(cover);
-      if (!reader.read(q, h.length, "GMSK", grid_box, full_resolution, ArrayPrediction::kNone, 0, cover, cover,
+      if (!reader.read(q, h.chunk_length, "GMSK", grid_box, full_resolution, ArrayPrediction::kNone, 0, cover, cover,
                        nullptr, &mask, io_error))
         return false;
       for (int64_t v : mask.v)
         if (v != 0 && v != 1) return false;
       mask_read = true;
-    } else if (h.type == kChunkBand) {
-      if (bands_read >= bands.size() || (wh.hasMask() && !mask_read) || h.length < kBandHeaderSize) return false;
+    } else if (h.chunk_type == kChunkBand) {
+      if (bands_read >= bands.size() || (wh.hasMask() && !mask_read) || h.chunk_length < kBandHeaderSize) return false;
       uint8_t header[kBandHeaderSize];
       if (!source.read(q, kBandHeaderSize, header)) {
         *io_error = ioError(q, "a band header");
@@ -341,7 +325,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
       const uint8_t prediction = flags & kBandPredictionMask;
       if (index != bands_read || (flags & ~kBandPredictionMask) || prediction > kBandPredictionWeighted ||
           (prediction == kBandPredictionWeighted && wh.entropy_mode == kEntropyBaseline) || reserved != 0 ||
-          step > static_cast<uint64_t>(kValueLimit) || (step == 0 && h.length != kBandHeaderSize))
+          step > static_cast<uint64_t>(kValueLimit) || (step == 0 && h.chunk_length != kBandHeaderSize))
         return false;
       const wavelet::Band& band = bands[index];
       const Ranges need = bandNeed(band);
@@ -352,14 +336,14 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
         std::copy(band.size, band.size + 3, box.size);
         int resolution[3];
         bandResolution(band.level, levels, resolution);
-        if (!reader.read(q + kBandHeaderSize, h.length - kBandHeaderSize, "GBND", box, resolution,
+        if (!reader.read(q + kBandHeaderSize, h.chunk_length - kBandHeaderSize, "GBND", box, resolution,
                          static_cast<ArrayPrediction>(prediction), step, need, need, nullptr, &band_values[index],
                          io_error))
           return false;
       }
       ++bands_read;
-    } else if (h.type == kChunkResidual) {
-      if (!wh.hasResidual() || residual_seen || bands_read != bands.size() || h.length < kResidualHeaderSize)
+    } else if (h.chunk_type == kChunkResidual) {
+      if (!wh.hasResidual() || residual_seen || bands_read != bands.size() || h.chunk_length < kResidualHeaderSize)
         return false;
       uint8_t header[kResidualHeaderSize];
       if (!source.read(q, kResidualHeaderSize, header)) {
@@ -375,7 +359,7 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
         continue;
       }
       residual.make(cover);
-      if (!reader.read(q + kResidualHeaderSize, h.length - kResidualHeaderSize, "GRES", grid_box, full_resolution,
+      if (!reader.read(q + kResidualHeaderSize, h.chunk_length - kResidualHeaderSize, "GRES", grid_box, full_resolution,
                        ArrayPrediction::kNone, 0, cover, cover, mask_read ? &mask : nullptr, &residual, io_error))
         return false;
       residual_read = true;
@@ -416,7 +400,8 @@ bool decodePrecinctRegion(ByteSource& source, uint64_t next, const DecodedGrid& 
     }
     for (int a = 0; a < 3; ++a) {
       if (plan.axis[a].levels < j) continue;
-      synthesizeAxis(wavelet::WindowLine(plan.axis[a], j), a, low[j][a].size(), low[j - 1][a], in, &passed);
+      const wavelet::WindowInputs inputs{low[j][a].lo, low[j][a].hi, high[j][a].lo, high[j][a].hi};
+      synthesizeAxis(wavelet::WindowLine(plan.axis[a], j), a, inputs, low[j - 1][a], in, &passed);
       std::swap(in, passed);
     }
     current = std::move(in);

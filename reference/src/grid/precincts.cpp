@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "common/byte_reader.h"
+
 namespace mrsv {
 
 void blockGrid(const ArrayBox& box, const int resolution[3], int precinct_log2, uint32_t edge[3],
@@ -47,6 +49,14 @@ std::vector<ArrayBlock> arrayBlocks(const ArrayBox& box, const int resolution[3]
         blocks.push_back(blockAt(box, edge, index));
       }
   return blocks;
+}
+
+bool blockOffsets(const uint8_t* table, uint64_t n, uint64_t coded_size, std::vector<uint64_t>* offsets) {
+  offsets->resize(n + 1);
+  (*offsets)[0] = 0;
+  ByteReader r(table, 4 * n);
+  for (uint64_t b = 0; b < n; ++b) (*offsets)[b + 1] = (*offsets)[b] + r.u32();
+  return (*offsets)[n] == coded_size - 4 * n;
 }
 
 void bandResolution(int level, const int axis_levels[3], int resolution[3]) {

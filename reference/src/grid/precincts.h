@@ -31,10 +31,17 @@ struct ArrayBlock {
 // shorter. P > 0.
 std::vector<ArrayBlock> arrayBlocks(const ArrayBox& box, const int resolution[3], int precinct_log2);
 
+// spec 5.7.6 rule 2: from the table of `n` u32 lengths at `table` (4n bytes)
+// of a blocked array of `coded_size` bytes, offsets[b] .. offsets[b + 1]
+// (n + 1 entries, offsets[n] their sum): block b's bytes, counted from the
+// end of the table. False when the sum is not coded_size - 4n.
+bool blockOffsets(const uint8_t* table, uint64_t n, uint64_t coded_size, std::vector<uint64_t>* offsets);
+
 // Scratch of a decoder of blocked arrays, kept from array to array.
 struct BlockScratch {
   std::vector<int64_t> values;
   std::vector<uint8_t> skip;
+  std::vector<uint64_t> offsets;
 };
 
 // The block edge and the number of blocks along each axis (block (i, j, k) is

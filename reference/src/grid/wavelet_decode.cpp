@@ -82,27 +82,24 @@ Error decodeBlockedPayload(const WaveletHeader& header, const uint8_t* payload, 
   if (size < table)
     return fail(0, "coded data shorter than its table of " + std::to_string(count) + " block lengths");
   const std::vector<ArrayBlock> blocks = arrayBlocks(box, resolution, header.precinct_log2);
-  ByteReader r(payload, table);
-  std::vector<uint32_t> lengths(blocks.size());
-  uint64_t total = 0;
-  for (uint32_t& n : lengths) total += n = r.u32();
-  if (total != size - table)
-    return fail(0, "the block lengths add up to " + std::to_string(total) + " bytes, not the " +
+  std::vector<uint64_t>& offsets = scratch->offsets;
+  if (!blockOffsets(payload, count, size, &offsets))
+    return fail(0, "the block lengths add up to " + std::to_string(offsets[count]) + " bytes, not the " +
                        std::to_string(size - table) + " after the table");
   const bool strided = header.entropy_mode != kEntropyBaseline && prediction == ArrayPrediction::kNone;
   const bool narrow = out.narrow != nullptr;
   bool all_fit = true;
-  uint64_t at = table;
   for (size_t i = 0; i < blocks.size(); ++i) {
     const ArrayBlock& b = blocks[i];
+    const uint64_t at = table + offsets[i], length = offsets[i + 1] - offsets[i];
     const size_t origin = b.origin[0] + b.origin[1] * out.row_stride + b.origin[2] * out.slice_stride;
     const uint8_t* block_skip = nullptr;
-    if (skip && lengths[i] != 0) {
+    if (skip && length != 0) {
       scratch->skip.resize(b.box.count());
       copyBlockOut(skip, box.size[0], size_t{box.size[0]} * box.size[1], b, scratch->skip.data());
       block_skip = scratch->skip.data();
     }
-    if (lengths[i] == 0) {  // every value of the block is 0
+    if (length == 0) {  // every value of the block is 0
       for (uint32_t z = 0; z < b.box.size[2]; ++z)
         for (uint32_t y = 0; y < b.box.size[1]; ++y) {
           const size_t row = origin + y * out.row_stride + z * out.slice_stride;
@@ -120,21 +117,20 @@ Error decodeBlockedPayload(const WaveletHeader& header, const uint8_t* payload, 
       } else {
         place.data = out.data + origin;
       }
-      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, lengths[i], payload_offset + at,
+      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, length, payload_offset + at,
                                        field, b.box, prediction, block_skip, place, symbols, magnitudes);
           !e.ok())
         return e;
       all_fit &= fits;
     } else {
       scratch->values.resize(b.box.count());
-      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, lengths[i], payload_offset + at,
+      if (Error e = decodeArrayPayload(header.entropy_mode, payload + at, length, payload_offset + at,
                                        field, b.box, prediction, block_skip,
                                        contiguous(scratch->values.data(), b.box), symbols, magnitudes);
           !e.ok())
         return e;
       copyBlockIn(scratch->values.data(), b, out.data, out.row_stride, out.slice_stride);
     }
-    at += lengths[i];
   }
   if (out.narrow_fits) *out.narrow_fits = all_fit;
   return {};

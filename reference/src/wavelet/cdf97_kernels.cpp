@@ -3,15 +3,12 @@
 #include "wavelet/cdf97_kernels.h"
 
 #include "wavelet/cdf97.h"
-#include "wavelet/synthesis_fixed.h"  // kValueLimit
+#include "wavelet/synthesis_fixed.h"  // kValueLimit, saturate()
 
 namespace mrsv::wavelet {
 namespace {
 
 constexpr int64_t kHalf = int64_t{1} << (kCdf97FracBits - 1);
-
-// sat of 4.11.3: clamps to [-V, V], V = kValueLimit = 2^35 - 1.
-int64_t sat(int64_t v) { return v > kValueLimit ? kValueLimit : v < -kValueLimit ? -kValueLimit : v; }
 
 // floor((c * v + 2^23) / 2^24); |c * v| < 2^60.7 (4.11.4). C++17 leaves >> of a
 // negative value to the implementation; every compiler we build with shifts
@@ -23,20 +20,20 @@ int64_t scaled(int64_t c, int64_t v) { return (c * v + kHalf) >> kCdf97FracBits;
 // 4.11.3: x[2i] = sat((sat(value i of the line) * K + 2^23) >> 24).
 bool scaleScalar(const int64_t* x, int64_t* y, size_t n) {
   int64_t any = 0;
-  for (size_t j = 0; j < n; ++j) any |= y[j] = sat(scaled(kCdf97K, sat(x[j])));
+  for (size_t j = 0; j < n; ++j) any |= y[j] = saturate(scaled(kCdf97K, saturate(x[j])));
   return any != 0;
 }
 
 // 4.11.3: x[2i + 1] = sat(value h + i of the line).
 bool saturateScalar(const int64_t* x, int64_t* y, size_t n) {
   int64_t any = 0;
-  for (size_t j = 0; j < n; ++j) any |= y[j] = sat(x[j]);
+  for (size_t j = 0; j < n; ++j) any |= y[j] = saturate(x[j]);
   return any != 0;
 }
 
 // 4.11.3 step(p, C): x[i] = sat(x[i] - ((C * (x[l] + x[r]) + 2^23) >> 24)).
 void liftScalar(int64_t* y, const int64_t* a, const int64_t* b, size_t n, int64_t c) {
-  for (size_t j = 0; j < n; ++j) y[j] = sat(y[j] - scaled(c, a[j] + b[j]));
+  for (size_t j = 0; j < n; ++j) y[j] = saturate(y[j] - scaled(c, a[j] + b[j]));
 }
 
 void interleaveScalar(const int64_t* even, const int64_t* odd, int64_t* out, size_t n_even,

@@ -31,14 +31,6 @@ namespace {
 
 constexpr int64_t kHalf = int64_t{1} << (kTapFracBits - 1);
 
-int64_t saturate(int64_t v) {
-  return v > kValueLimit ? kValueLimit : v < -kValueLimit ? -kValueLimit : v;
-}
-
-// floor(v / 2^kTapFracBits). C++17 leaves >> of a negative value to the
-// implementation; ~(~v >> s) shifts a non-negative value and is the floor for v < 0.
-int64_t shiftFloor(int64_t v) { return v >= 0 ? v >> kTapFracBits : ~(~v >> kTapFracBits); }
-
 // Inputs in [-2^33, 2^33) cannot give a result beyond kValueLimit: every acc of
 // such inputs is within kMaxRowTapSum * 2^33 + 2^23 < kValueLimit * 2^24 (the
 // bound of 4.6 with 2^33 for kValueLimit). Inputs are that small unless an encoder

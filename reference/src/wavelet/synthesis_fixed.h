@@ -15,6 +15,14 @@ namespace mrsv::wavelet {
 // Saturation bound of every stored value. spec: 4.5
 constexpr int64_t kValueLimit = (int64_t{1} << 35) - 1;
 
+// sat of spec 4.5 and 4.11.3: clamps to [-kValueLimit, kValueLimit].
+inline int64_t saturate(int64_t v) { return v > kValueLimit ? kValueLimit : v < -kValueLimit ? -kValueLimit : v; }
+
+// floor(v / 2^24), the flooring shift of spec 4.1 by kTapFracBits (24, also the
+// 9/7 lifting's fraction bits). C++17 leaves >> of a negative value to the
+// implementation; ~(~v >> s) shifts a non-negative value and is the floor for v < 0.
+inline int64_t shiftFloor(int64_t v) { return v >= 0 ? v >> kTapFracBits : ~(~v >> kTapFracBits); }
+
 // spec: 4.5. `data` holds the padded array (plan.paddedCount() values, x fastest,
 // then y, then z) in the Mallat layout, values in fixed point (any scale the codec
 // chooses), each already saturated to [-kValueLimit, kValueLimit] (values outside are

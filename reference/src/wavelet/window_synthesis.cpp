@@ -12,9 +12,6 @@ namespace {
 
 constexpr int64_t kHalf = int64_t{1} << 23;
 
-int64_t sat(int64_t v) { return v < -kValueLimit ? -kValueLimit : v > kValueLimit ? kValueLimit : v; }
-// The flooring shift of spec 4.1 by 24 bits.
-int64_t shift24(int64_t v) { return v >= 0 ? v >> 24 : ~(~v >> 24); }
 int64_t ceilDiv2(int64_t v) { return v >= 0 ? (v + 1) / 2 : -((-v) / 2); }
 int64_t floorDiv2(int64_t v) { return v >= 0 ? v / 2 : -((1 - v) / 2); }
 
@@ -71,10 +68,9 @@ WindowInputs WindowLine::inputs(uint32_t out0, uint32_t out1) const {
   return in;
 }
 
-void WindowLine::synthesize(const int64_t* low, const int64_t* high, uint32_t out0, uint32_t out1,
-                            int64_t* out, std::vector<int64_t>* scratch) const {
+void WindowLine::synthesize(const WindowInputs& in, const int64_t* low, const int64_t* high, uint32_t out0,
+                            uint32_t out1, int64_t* out, std::vector<int64_t>* scratch) const {
   if (out0 >= out1) return;
-  const WindowInputs in = inputs(out0, out1);
   if (isCdf97(order_)) {
     // spec 4.11.3 on positions [p0, p1): the scaled low values at even
     // positions, the high values at odd ones, then step t = 1..4 on the
@@ -85,7 +81,8 @@ void WindowLine::synthesize(const int64_t* low, const int64_t* high, uint32_t ou
     scratch->resize(static_cast<size_t>(p1 - p0));
     int64_t* x = scratch->data() - p0;  // x[i] for p0 <= i < p1
     for (int64_t i = p0; i < p1; ++i)
-      x[i] = i % 2 == 0 ? sat(shift24(sat(low[i / 2 - in.low0]) * kCdf97K + kHalf)) : sat(high[i / 2 - in.high0]);
+      x[i] = i % 2 == 0 ? saturate(shiftFloor(saturate(low[i / 2 - in.low0]) * kCdf97K + kHalf))
+                        : saturate(high[i / 2 - in.high0]);
     static const struct {
       int parity;
       int64_t c;
@@ -96,7 +93,7 @@ void WindowLine::synthesize(const int64_t* low, const int64_t* high, uint32_t ou
       const int64_t c = kSteps[t - 1].c;
       for (int64_t i = a + ((a & 1) != p); i < b; i += 2) {
         const int64_t l = i > 0 ? i - 1 : i + 1, r = i + 1 < F ? i + 1 : i - 1;
-        x[i] = sat(x[i] - shift24(c * (x[l] + x[r]) + kHalf));
+        x[i] = saturate(x[i] - shiftFloor(c * (x[l] + x[r]) + kHalf));
       }
     }
     std::copy(x + out0, x + out1, out);
@@ -110,7 +107,7 @@ void WindowLine::synthesize(const int64_t* low, const int64_t* high, uint32_t ou
   int64_t* acc = scratch->data();
   auto add = [&](const int64_t* inputs, uint32_t first) {
     return [&, inputs, first](uint32_t j, const Column& c) {
-      const int64_t v = sat(inputs[j - first]);
+      const int64_t v = saturate(inputs[j - first]);
       for (int r = 0; r < c.count; ++r) {
         const uint32_t row = c.first_row + static_cast<uint32_t>(r);
         if (row >= out0 && row < out1) acc[row - out0] += int64_t{c.fixed[r]} * v;
@@ -121,7 +118,7 @@ void WindowLine::synthesize(const int64_t* low, const int64_t* high, uint32_t ou
                   [&](uint32_t j) { return f.p(j); }, out0, out1, add(low, in.low0));
   columnsReaching(f.wavelets(), static_cast<uint32_t>(of.q_boundary), of.q_interior_first, of.q_interior_count,
                   [&](uint32_t j) { return f.q(j); }, out0, out1, add(high, in.high0));
-  for (uint32_t i = 0; i < out1 - out0; ++i) out[i] = sat(shift24(acc[i]));
+  for (uint32_t i = 0; i < out1 - out0; ++i) out[i] = saturate(shiftFloor(acc[i]));
 }
 
 }  // namespace mrsv::wavelet

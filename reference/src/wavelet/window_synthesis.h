@@ -32,11 +32,12 @@ class WindowLine {
 
   WindowInputs inputs(uint32_t out0, uint32_t out1) const;
 
-  // The inputs of inputs(out0, out1): low-pass input i (low0 <= i < low1) at
-  // low[i - low0], high-pass input i at high[i - high0]. Writes outputs
-  // out0 .. out1 - 1 to out[0 .. out1 - out0). `scratch` is reused.
-  void synthesize(const int64_t* low, const int64_t* high, uint32_t out0, uint32_t out1, int64_t* out,
-                  std::vector<int64_t>* scratch) const;
+  // Outputs out0 .. out1 - 1 to out[0 .. out1 - out0) from the inputs `in` =
+  // inputs(out0, out1) names (computed once for all the lines of a pass):
+  // low-pass input i (in.low0 <= i < in.low1) at low[i - in.low0], high-pass
+  // input i at high[i - in.high0]. `scratch` is reused.
+  void synthesize(const WindowInputs& in, const int64_t* low, const int64_t* high, uint32_t out0, uint32_t out1,
+                  int64_t* out, std::vector<int64_t>* scratch) const;
 
  private:
   int order_;
