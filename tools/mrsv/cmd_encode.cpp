@@ -100,8 +100,12 @@ const char kHelp[] =
     "                        keep the coded tiles in a temporary file, so that the memory is\n"
     "                        a row of tiles, not the grid; the same stream as without it.\n"
     "                        A --bits-per-sample or --psnr target reads IN once per step\n"
-    "                        tried (about 10 to 20 times)\n"
-    "  --threads N           tiles coded at once (default: the number of cores); the output\n"
+    "                        tried (about 10 to 20 times). With --precinct and a raw IN: read\n"
+    "                        IN a strip of precincts at a time, analyse level by level over\n"
+    "                        strips and keep the coded blocks in temporary files, so that the\n"
+    "                        memory is a few strips of the grid's width (CDF 9/7; a --step,\n"
+    "                        --max-error or --lossless; voids filled within each precinct)\n"
+    "  --threads N           tiles (or precinct blocks) coded at once (default: the number of cores); the output\n"
     "                        is the same whatever N\n"
     "  --quiet               no progress output\n"
     "  --help                this text\n"
@@ -334,8 +338,10 @@ int runEncode(int argc, char** argv) {
   if (!parseMetaOptions(args, &metadata, &error)) return fail(cmd, error, kExitUsage);
   if (isSameFile(in, out)) return fail(cmd, "OUT is the same file as IN; refusing to overwrite the input", kExitUsage);
   if (args.flag("out-of-core")) {
-    if (tile_sizes.empty() || !raw.has_layout)
-      return fail(cmd, "--out-of-core needs --tile and a headerless raw IN (--dims, --type)", kExitUsage);
+    const bool precincts = wavelet.precinct_log2 > 0;
+    if ((tile_sizes.empty() && !precincts) || !raw.has_layout)
+      return fail(cmd, "--out-of-core needs --tile or --precinct and a headerless raw IN (--dims, --type)",
+                  kExitUsage);
     if (args.has("roi"))
       return fail(cmd, "--out-of-core does not take --roi in this version", kExitUsage);
     GridHeader header = raw.header;
@@ -344,7 +350,7 @@ int runEncode(int argc, char** argv) {
         return fail(cmd, error, kExitUsage);
       header.grid_flags |= kGridFlagHasNodata;
     }
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3 && !precincts; ++a)
       tiled.tile_size[a] = a >= header.num_dims ? 1 : tile_sizes[std::min<size_t>(a, tile_sizes.size() - 1)];
     std::unique_ptr<GridBoxReader> reader =
         openRawBoxReader(in, header, raw.big_endian ? Endian::kBig : Endian::kLittle, &error);
@@ -356,7 +362,12 @@ int runEncode(int argc, char** argv) {
     AtomicFileWriter sink;
     if (!sink.open(out, &error)) return fail(cmd, out + ": " + error, kExitIo);
     WaveletEncodeReport report;
-    if (Error e = encodeTiledGridFromReader(header, *reader, metadata, wavelet, tiled, sink, &report); !e.ok())
+    PrecinctStreamOptions run;
+    run.threads = tiled.threads;
+    run.progress = [&](double done) { progress.update(done); };
+    if (Error e = precincts ? encodePrecinctGridFromReader(header, *reader, metadata, wavelet, run, sink, &report)
+                            : encodeTiledGridFromReader(header, *reader, metadata, wavelet, tiled, sink, &report);
+        !e.ok())
       return fail(cmd, in + ": " + e.field + ": " + e.message,
                   e.status == Status::kIoError ? kExitIo : kExitInvalidData);
     if (!sink.commit(&error)) return fail(cmd, out + ": " + error, kExitIo);

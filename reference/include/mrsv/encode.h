@@ -120,4 +120,26 @@ Error encodeTiledGridFromReader(const GridHeader& header, GridBoxReader& reader,
                                 const WaveletEncodeOptions& options, const TiledEncodeOptions& tiled,
                                 ByteSink& out, WaveletEncodeReport* report);
 
+// How encodePrecinctGridFromReader() runs: its blocks coded by this many
+// threads at once (the stream is the same whatever the count), and its
+// progress from 0 to 1.
+struct PrecinctStreamOptions {
+  int threads = 1;
+  std::function<void(double done)> progress;
+};
+
+// encodeWaveletGrid() of a grid in precincts (options.precinct_log2 > 0, the
+// CDF 9/7 wavelet) read a strip of precincts at a time from `reader` (spec
+// 5.9, decision D91): the analysis runs level by level over strips, every
+// level's low-pass part and every coded block wait in temporary files, and
+// the stream is written to `out`. Memory is bounded by a few strips of the
+// grid's width, not by the grid. A step, an error bound or lossless; no
+// rate or PSNR target, region of interest or keep fraction in this version.
+// Without voids, the band chunks (and the residual for the same steps) are
+// those encodeWaveletGrid() writes at the same step; voids are filled within
+// each precinct, not over the grid.
+Error encodePrecinctGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                                   const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
+                                   ByteSink& out, WaveletEncodeReport* report);
+
 }  // namespace mrsv

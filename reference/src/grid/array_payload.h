@@ -23,6 +23,9 @@ Error decodeArrayPayload(uint8_t entropy_mode, const uint8_t* payload, size_t si
                          ArrayPrediction prediction, const uint8_t* skip,
                          const ArrayDestination& out, int64_t* symbols, uint16_t* magnitudes);
 
+// spec: 5.8.2 an integer sample value clamped to the range of its type.
+int64_t clampToType(int64_t v, SampleType type);
+
 // spec: 5.8.2 at full resolution: the sample of synthesised value t, written to
 // `out` (little-endian, sampleSize(g.sample_type) bytes): the no-data value
 // when `masked`; for integer samples the residual r (times residual_step)

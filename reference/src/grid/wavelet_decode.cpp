@@ -416,18 +416,6 @@ void storeLittleEndian(T value, uint8_t* out) {
   std::memcpy(out, bytes, sizeof(T));
 }
 
-// spec: 5.8.2 the sample value of one decoded value (integer samples).
-int64_t clampToType(int64_t v, SampleType type) {
-  int64_t lo, hi;
-  switch (type) {
-    case SampleType::kUint8: lo = 0; hi = 255; break;
-    case SampleType::kInt16: lo = -32768; hi = 32767; break;
-    case SampleType::kUint16: lo = 0; hi = 65535; break;
-    default: lo = INT32_MIN; hi = INT32_MAX; break;
-  }
-  return v < lo ? lo : v > hi ? hi : v;
-}
-
 void writeSample(const GridHeader& g, const WaveletHeader& w, int64_t value, uint8_t* out) {
   switch (g.sample_type) {
     case SampleType::kUint8: *out = static_cast<uint8_t>(value); return;
@@ -450,6 +438,18 @@ void writeSample(const GridHeader& g, const WaveletHeader& w, int64_t value, uin
 }
 
 }  // namespace
+
+// spec: 5.8.2 the sample value of one decoded value (integer samples).
+int64_t clampToType(int64_t v, SampleType type) {
+  int64_t lo, hi;
+  switch (type) {
+    case SampleType::kUint8: lo = 0; hi = 255; break;
+    case SampleType::kInt16: lo = -32768; hi = 32767; break;
+    case SampleType::kUint16: lo = 0; hi = 65535; break;
+    default: lo = INT32_MIN; hi = INT32_MAX; break;
+  }
+  return v < lo ? lo : v > hi ? hi : v;
+}
 
 void sampleOfValue(const GridHeader& g, const WaveletHeader& w, int64_t t, bool masked, int64_t r,
                    uint32_t residual_step, uint8_t* out) {

@@ -11,7 +11,9 @@
 
 #include "bitstream/range_coder_adapter.h"
 #include "common/byte_writer.h"
-#include "grid/baseline_coding.h"
+#include "grid/array_encoding.h"
+#include "grid/band_quantizer.h"
+#include "grid/encoder_setup.h"
 #include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
 #include "grid/precincts.h"
@@ -31,142 +33,9 @@ using wavelet::GridPlan;
 
 bool isFloatType(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
 
-// Appends one coded array in the stream's entropy mode (spec 5.7 or 5.10).
-void encodeArray(uint8_t entropy_mode, int64_t* values, const ArrayBox& box,
-                 ArrayPrediction prediction, const uint8_t* skip, std::vector<uint8_t>* out) {
-  if (entropy_mode == kEntropyBaseline) {
-    encodeBaselineArray(values, box, prediction, skip, out);
-    return;
-  }
-  std::vector<int64_t> symbols(box.count());
-  RangeEncoder rc(out);
-  EncodingCoder coder{&rc};
-  if (prediction == ArrayPrediction::kWeighted)
-    codeWeightedArray(coder, values, symbols.data(), box);  // bands only: no skip
-  else
-    codeArray(coder, values, symbols.data(), box, prediction, skip);
-  rc.finish();
-}
-
-// With no decomposition the coarsest block is the samples, and a void (valid
-// 0) costs least when it holds exactly its prediction: its residual is 0, and
-// the mask restores the no-data value anyway. Fills in raster order, so that
-// each prediction sees the filled values as the decoder will.
-void fillVoidsWithPredictions(int64_t* values, const ArrayBox& box, ArrayPrediction prediction,
-                              const uint8_t* valid) {
-  const size_t sx = box.size[0], sxy = sx * box.size[1];
-  if (prediction == ArrayPrediction::kNeighbour) {
-    for (uint32_t z = 0; z < box.size[2]; ++z)
-      for (uint32_t y = 0; y < box.size[1]; ++y)
-        for (uint32_t x = 0; x < box.size[0]; ++x) {
-          const size_t i = x + y * sx + z * sxy;
-          if (!valid[i]) values[i] = clampArrayValue(predictNeighbour(values, box, x, y, z));
-        }
-    return;
-  }
-  WeightedPredictor predictor;
-  if (!predictor.init(box.size[0])) return;  // the pull-push fill stays
-  for (uint32_t z = 0; z < box.size[2]; ++z)
-    for (uint32_t y = 0; y < box.size[1]; ++y) {
-      int64_t* row = values + y * sx + z * sxy;
-      const int64_t* up = y > 0 ? row - sx : nullptr;
-      const int64_t* up2 = y > 1 ? row - 2 * sx : nullptr;
-      for (uint32_t x = 0; x < box.size[0]; ++x) {
-        const int64_t p = predictor.predict(row, up, up2, x);
-        if (!valid[row - values + x]) row[x] = clampArrayValue(p);
-        predictor.record(x, row[x]);
-      }
-      predictor.nextRow();
-    }
-}
-
-// spec: 5.7.6 one coded array, in blocks apart when the header has precincts.
-// `values` is contiguous over `box`; with `fill_valid` the voids of each coded
-// array are filled with its predictions first (the coarsest block of samples).
-void encodeBlockedArray(const WaveletHeader& wh, int64_t* values, const ArrayBox& box,
-                        const int resolution[3], ArrayPrediction prediction, const uint8_t* skip,
-                        const uint8_t* fill_valid, std::vector<uint8_t>* out) {
-  if (wh.precinct_log2 == 0) {
-    if (fill_valid) fillVoidsWithPredictions(values, box, prediction, fill_valid);
-    encodeArray(wh.entropy_mode, values, box, prediction, skip, out);
-    return;
-  }
-  const std::vector<ArrayBlock> blocks = arrayBlocks(box, resolution, wh.precinct_log2);
-  const size_t row = box.size[0], slice = row * box.size[1];
-  std::vector<uint8_t> coded;
-  std::vector<int64_t> block_values;
-  std::vector<uint8_t> block_skip, block_valid;
-  ByteWriter table(out);
-  const size_t table_at = out->size();
-  for (size_t i = 0; i < blocks.size(); ++i) table.u32(0);
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    const ArrayBlock& b = blocks[i];
-    block_values.resize(b.box.count());
-    copyBlockOut(values, row, slice, b, block_values.data());
-    // A block whose values are all 0 is coded as length 0 (nothing to decode).
-    if (std::all_of(block_values.begin(), block_values.end(), [](int64_t v) { return v == 0; }))
-      continue;
-    if (skip) {
-      block_skip.resize(b.box.count());
-      copyBlockOut(skip, row, slice, b, block_skip.data());
-    }
-    if (fill_valid) {
-      block_valid.resize(b.box.count());
-      copyBlockOut(fill_valid, row, slice, b, block_valid.data());
-      fillVoidsWithPredictions(block_values.data(), b.box, prediction, block_valid.data());
-    }
-    coded.clear();
-    encodeArray(wh.entropy_mode, block_values.data(), b.box, prediction,
-                skip ? block_skip.data() : nullptr, &coded);
-    const uint32_t n = static_cast<uint32_t>(coded.size());
-    for (int k = 0; k < 4; ++k) (*out)[table_at + 4 * i + k] = static_cast<uint8_t>(n >> (8 * k));
-    out->insert(out->end(), coded.begin(), coded.end());
-  }
-}
-
 Error invalid(std::string field, std::string message) {
   return Error{Status::kInvalidArgument, 0, std::move(field), std::move(message)};
 }
-
-// Sample-domain L2 gain of one interior coefficient of a 1-D axis: the
-// Euclidean norm of the finest-level coefficients synthesised from a unit
-// impulse. wavelet[l]: wavelets of level l (1..L); scaling[l]: scaling
-// functions of level l (0..L), each synthesised from a plan of l levels (the
-// same functions up to the padding).
-struct AxisGains {
-  std::vector<double> wavelet, scaling;
-};
-
-double impulseGain(const wavelet::AxisPlan& axis, const Band& band) {
-  GridPlan line;
-  line.num_dims = 1;
-  line.axis[0] = axis;
-  std::vector<double> buffer(axis.size(0), 0.0);
-  buffer[band.offset[0] + band.size[0] / 2] = 1.0;  // an interior function
-  wavelet::synthesize(line, buffer.data());
-  double energy = 0;
-  for (double v : buffer) energy += v * v;
-  return std::sqrt(energy);
-}
-
-AxisGains axisGains(const wavelet::AxisPlan& axis) {
-  AxisGains g;
-  g.wavelet.assign(static_cast<size_t>(axis.levels) + 1, 1.0);
-  g.scaling.assign(static_cast<size_t>(axis.levels) + 1, 1.0);
-  for (int l = 1; l <= axis.levels; ++l) {
-    wavelet::AxisPlan sub;
-    if (!wavelet::makeAxisPlan(axis.samples, axis.order, l, &sub)) sub = axis;
-    GridPlan line;
-    line.num_dims = 1;
-    line.axis[0] = sub;
-    for (const Band& band : wavelet::bandsOf(line)) {
-      if (band.mask == 0) g.scaling[static_cast<size_t>(l)] = impulseGain(sub, band);
-      else if (band.level == l) g.wavelet[static_cast<size_t>(l)] = impulseGain(sub, band);
-    }
-  }
-  return g;
-}
-
 
 class GridEncoder {
  public:
@@ -182,30 +51,25 @@ class GridEncoder {
   uint64_t validCount() const { return valid_count_; }
   double range() const { return c_max_ - c_min_; }
   bool integerSamples() const { return !isFloatType(header_.sample_type); }
-  double unitsPerSample() const { return 1.0 / scale_; }
+  double unitsPerSample() const { return 1.0 / setup_.scale; }
   double keepThreshold() const { return keep_threshold_; }
-  int levels() const { return plan_.maxLevels(); }
+  int levels() const { return setup_.plan.maxLevels(); }
   // The exact L2 error of the bands (spec 5.9) and its orthogonal estimate.
   void l2Errors(double delta, WaveletEncodeReport* report) const;
 
  private:
   void prepareOracles(const WaveletEncodeOptions& options);
   uint64_t quantizeBand(uint16_t index, double delta, std::vector<int64_t>* q) const;
-  bool dropLoneUnits(const Band& band, double inv, std::vector<int64_t>* q) const;
   std::vector<uint8_t> bandChunk(uint16_t index, double delta);
   std::vector<uint8_t> residualChunk(const DecodedGrid& approx, uint32_t residual_step) const;
 
   GridHeader header_;
-  WaveletHeader wavelet_;
-  GridPlan plan_;
-  std::vector<Band> bands_;
+  WaveletSetup setup_;  // header, plan, bands, gains, scale
   std::vector<double> coefficients_;  // after analysis, x units
-  std::vector<double> band_gain_;
   std::vector<uint8_t> valid_;
   std::vector<double> values_;        // input samples as doubles
   uint64_t valid_count_ = 0;
   double c_min_ = 0, c_max_ = 0;
-  double scale_ = 1;                  // sample units per x unit
   std::vector<uint8_t> mask_chunk_;
   WaveletEncodeOptions::Prediction prediction_ = WaveletEncodeOptions::Prediction::kAuto;
   // Oracles.
@@ -226,7 +90,6 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   if (samples.size() != n * bytes)
     return invalid("samples", "got " + std::to_string(samples.size()) + " bytes, grid needs " +
                                   std::to_string(n * bytes));
-  static_assert(kWaveletOrderCdf97 == wavelet::kOrderCdf97, "one value for the 9/7 wavelet");
   if (!wavelet::isValidOrder(options.order))
     return invalid("order", "order must be 1 to 4, or 5 for the CDF 9/7 wavelet");
 
@@ -249,87 +112,34 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
     first = false;
     ++valid_count_;
   }
-  // spec: 5.2 and decision D6: x = (sample - c_min) / scale, so x spans [0, R / scale].
-  wavelet_.order = static_cast<uint8_t>(options.order);
-  wavelet_.entropy_mode = options.entropy_mode;
-  if (options.precinct_log2 != 0 &&
-      (options.precinct_log2 < kMinPrecinctLog2 || options.precinct_log2 > kMaxPrecinctLog2))
-    return invalid("precinct", "the precinct must be a power of two from 2^" +
-                                   std::to_string(kMinPrecinctLog2) + " to 2^" +
-                                   std::to_string(kMaxPrecinctLog2));
-  wavelet_.precinct_log2 = static_cast<uint8_t>(options.precinct_log2);
+  WaveletSetup setup;
+  if (Error e = makeWaveletSetup(header_, c_min_, c_max_, options, &setup); !e.ok()) return e;
+  setup_ = std::move(setup);
   // Weighted prediction exists only with range coding (spec 5.3).
   prediction_ = options.entropy_mode == kEntropyBaseline ? WaveletEncodeOptions::Prediction::kNeighbour
                                                          : options.prediction;
-  double r = c_max_ - c_min_;
-  if (integerSamples()) {
-    scale_ = 1;
-    int64_t offset = static_cast<int64_t>(c_min_);
-    wavelet_.value_offset = static_cast<uint64_t>(offset);
-    wavelet_.value_scale = 0;
-    // Coefficients must stay below kValueLimit = 2^35 in fixed point. A
-    // coefficient can reach the product over the transformed axes of the
-    // worst-case gain from samples to coefficients (spec 4.10: 1, 2.52, 3.87,
-    // 7.05 for orders 1-4, rounded up here; 4.11.4: 2.1 for CDF 9/7) times the
-    // range, plus one step.
-    static const double kWorstAxisGain[6] = {0, 1.0, 2.6, 4.0, 7.2, 2.2};
-    double gain = 1;
-    for (int a = 0; a < header_.num_dims; ++a)
-      if (wavelet::chooseLevels(a == 0 ? header_.size_x : a == 1 ? header_.size_y : header_.size_z,
-                                options.order, options.max_levels) > 0)
-        gain *= kWorstAxisGain[options.order];
-    int frac = 34 - static_cast<int>(std::ceil(std::log2(gain * (r + 1))));
-    wavelet_.frac_bits = static_cast<uint8_t>(std::clamp(frac, 0, 24));
-  } else {
-    scale_ = r > 0 ? std::ldexp(r, -24) : 1.0;
-    std::memcpy(&wavelet_.value_offset, &c_min_, 8);
-    std::memcpy(&wavelet_.value_scale, &scale_, 8);
-    wavelet_.frac_bits = 6;
-  }
   const uint32_t size[3] = {header_.size_x, header_.size_y, header_.size_z};
-  int levels[3] = {0, 0, 0};
-  for (int a = 0; a < header_.num_dims; ++a) {
-    levels[a] = wavelet::chooseLevels(size[a], options.order, options.max_levels);
-    wavelet_.levels[a] = static_cast<uint8_t>(levels[a]);
-  }
-  if (!wavelet::makeGridPlan(header_.num_dims, size, options.order, levels, &plan_))
-    return invalid("grid", "no wavelet plan for this grid");
-  bands_ = wavelet::bandsOf(plan_);
-  if (bands_.size() > 65535) return invalid("grid", "more than 65535 bands");
 
   // Normalised values, voids filled, then padded by repeating the last sample
   // of every axis (constants cost no detail coefficients).
   std::vector<double> x(n);
-  for (size_t i = 0; i < n; ++i) x[i] = valid_[i] ? (values_[i] - c_min_) / scale_ : 0.0;
+  for (size_t i = 0; i < n; ++i) x[i] = valid_[i] ? (values_[i] - c_min_) / setup_.scale : 0.0;
   if (valid_count_ < n) fillVoidsPullPush(&x, valid_, size);
-  analyzeSamples(plan_, size, x, &coefficients_);
-
-  AxisGains gains[3];
-  for (int a = 0; a < 3; ++a) gains[a] = axisGains(plan_.axis[a]);
-  for (const Band& b : bands_) {
-    double g = 1;
-    for (int a = 0; a < 3; ++a) {
-      const wavelet::AxisPlan& ax = plan_.axis[a];
-      if (ax.levels == 0) continue;
-      if (b.mask & (1 << a)) g *= gains[a].wavelet[static_cast<size_t>(b.level)];
-      else g *= gains[a].scaling[static_cast<size_t>(b.mask == 0 ? ax.levels : std::min(b.level, ax.levels))];
-    }
-    band_gain_.push_back(g);
-  }
+  analyzeSamples(setup_.plan, size, x, &coefficients_);
 
   if (valid_count_ < n)
-    refineVoidFill(plan_, size, bands_, band_gain_, valid_, (c_max_ - c_min_) / scale_, &x, &coefficients_);
+    refineVoidFill(setup_.plan, size, setup_.bands, setup_.band_gain, valid_, (c_max_ - c_min_) / setup_.scale, &x, &coefficients_);
   prepareOracles(options);
 
   if (valid_count_ < n) {
-    wavelet_.wavelet_flags |= kWaveletFlagHasMask;
+    setup_.header.wavelet_flags |= kWaveletFlagHasMask;
     ArrayBox box;
     box.num_dims = header_.num_dims;
     std::copy(size, size + 3, box.size);
     std::vector<int64_t> mask(n);
     for (size_t i = 0; i < n; ++i) mask[i] = valid_[i] ? 0 : 1;
     const int full_resolution[3] = {0, 0, 0};
-    encodeBlockedArray(wavelet_, mask.data(), box, full_resolution, ArrayPrediction::kNone, nullptr,
+    encodeBlockedArray(setup_.header, mask.data(), box, full_resolution, ArrayPrediction::kNone, nullptr,
                        nullptr, &mask_chunk_);
   }
   return {};
@@ -338,27 +148,27 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
 // Region weights of every coefficient (local oracle) and the importance
 // threshold of the global oracle (keep a fraction of the coefficients).
 void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
-  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  const uint64_t px = setup_.plan.axis[0].size(0), pxy = px * setup_.plan.axis[1].size(0);
   if (options.has_roi) {
     has_roi_ = true;
     roi_gain_ = std::max(1.0, options.roi_gain);
     weight_.assign(coefficients_.size(), 1.0f);
     std::vector<AxisSupports> supports;
-    for (int a = 0; a < 3; ++a) supports.emplace_back(plan_.axis[a]);
-    for (const Band& b : bands_) {
+    for (int a = 0; a < 3; ++a) supports.emplace_back(setup_.plan.axis[a]);
+    for (const Band& b : setup_.bands) {
       for (uint32_t z = 0; z < b.size[2]; ++z)
         for (uint32_t y = 0; y < b.size[1]; ++y)
           for (uint32_t x = 0; x < b.size[0]; ++x) {
             const uint32_t pos[3] = {x, y, z};
             uint32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-            for (int a = 0; a < plan_.num_dims; ++a) {
-              const wavelet::AxisPlan& ax = plan_.axis[a];
+            for (int a = 0; a < setup_.plan.num_dims; ++a) {
+              const wavelet::AxisPlan& ax = setup_.plan.axis[a];
               if ((b.mask >> a) & 1) supports[static_cast<size_t>(a)].wavelet(b.level, pos[a], &lo[a], &hi[a]);
               else supports[static_cast<size_t>(a)].scaling(
                        b.mask == 0 ? ax.levels : std::min(b.level, ax.levels), pos[a], &lo[a], &hi[a]);
             }
             weight_[(b.offset[0] + x) + (b.offset[1] + y) * px + (b.offset[2] + z) * pxy] =
-                static_cast<float>(regionWeight(options.roi, plan_.num_dims, lo, hi));
+                static_cast<float>(regionWeight(options.roi, setup_.plan.num_dims, lo, hi));
           }
     }
   }
@@ -367,8 +177,8 @@ void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
     // (|c| times its band's gain), weighted by the region when there is one.
     std::vector<double> importance;
     uint64_t coarsest = 0;
-    for (size_t bi = 0; bi < bands_.size(); ++bi) {
-      const Band& b = bands_[bi];
+    for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
+      const Band& b = setup_.bands[bi];
       if (b.mask == 0) {
         coarsest = uint64_t{b.size[0]} * b.size[1] * b.size[2];
         continue;
@@ -377,7 +187,7 @@ void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
         for (uint32_t y = 0; y < b.size[1]; ++y)
           for (uint32_t x = 0; x < b.size[0]; ++x) {
             size_t at = (b.offset[0] + x) + (b.offset[1] + y) * px + (b.offset[2] + z) * pxy;
-            importance.push_back(std::fabs(coefficients_[at]) * band_gain_[bi] *
+            importance.push_back(std::fabs(coefficients_[at]) * setup_.band_gain[bi] *
                                  (has_roi_ ? weight_[at] : 1.0));
           }
     }
@@ -395,117 +205,65 @@ void GridEncoder::prepareOracles(const WaveletEncodeOptions& options) {
   }
 }
 
-// Sets to 0 every +-1 of `q` (band `band`, quantised with `inv` fixed-point
-// units per x unit) whose neighbours in the band (the 8 or 26 around it) are
-// all 0 and whose coefficient is below 0.9 steps. Done in place: a value set
-// to 0 had only zeros around it, so no other candidate sees the change, and
-// the result is that of deciding on `q` as it came. Returns whether any value
-// is left.
-bool GridEncoder::dropLoneUnits(const Band& band, double inv, std::vector<int64_t>* q) const {
-  constexpr double kLoneUnitFloor = 0.9;
-  std::vector<int64_t>& v = *q;
-  const int64_t sx = band.size[0], sy = band.size[1], sz = band.size[2];
-  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
-  auto at = [&](int64_t x, int64_t y, int64_t z) { return static_cast<size_t>(x + sx * (y + sy * z)); };
-  auto alone = [&](int64_t x, int64_t y, int64_t z) {
-    for (int64_t nz = std::max<int64_t>(z - 1, 0); nz <= std::min(z + 1, sz - 1); ++nz)
-      for (int64_t ny = std::max<int64_t>(y - 1, 0); ny <= std::min(y + 1, sy - 1); ++ny)
-        for (int64_t nx = std::max<int64_t>(x - 1, 0); nx <= std::min(x + 1, sx - 1); ++nx)
-          if ((nx != x || ny != y || nz != z) && v[at(nx, ny, nz)] != 0) return false;
-    return true;
-  };
-  bool any = false;
-  for (int64_t z = 0; z < sz; ++z)
-    for (int64_t y = 0; y < sy; ++y)
-      for (int64_t x = 0; x < sx; ++x) {
-        int64_t& value = v[at(x, y, z)];
-        if ((value == 1 || value == -1) && alone(x, y, z)) {
-          const double c = coefficients_[band.offset[0] + static_cast<uint64_t>(x) +
-                                         (band.offset[1] + static_cast<uint64_t>(y)) * px +
-                                         (band.offset[2] + static_cast<uint64_t>(z)) * pxy];
-          if (std::fabs(c * inv) < kLoneUnitFloor) value = 0;
-        }
-        any |= value != 0;
-      }
-  return any;
-}
-
 // Quantises band `index` for base step `delta` (x units, sample-domain
 // normalised by the band gain): returns the fixed-point step (0 for a band that
 // quantises to zeros) and the integers in band order. The oracles act here:
 // a coefficient below the keep threshold, or outside the region of interest
-// and weighted below the dead zone, is dropped (paper 2.2).
+// and weighted below the dead zone, is dropped (paper 2.2). With precincts
+// every block is quantised apart (band_quantizer.h).
 uint64_t GridEncoder::quantizeBand(uint16_t index, double delta, std::vector<int64_t>* q) const {
-  const Band& band = bands_[index];
-  const double units = std::ldexp(1.0, wavelet_.frac_bits);
-  // Inside a region of interest the step is roi_gain times finer.
-  const double fine_delta = has_roi_ ? delta / roi_gain_ : delta;
-  double step_x = fine_delta / band_gain_[index];
-  // Step in fixed point; the quantiser uses exactly what the decoder will.
-  uint64_t step = static_cast<uint64_t>(std::clamp(std::llround(step_x * units), 1LL,
-                                                   static_cast<long long>(wavelet::kValueLimit)));
-  const double inv = units / static_cast<double>(step);
+  const Band& band = setup_.bands[index];
   const bool coarsest = band.mask == 0;
-  // A dead zone for detail coefficients: small ones cost more bits than the
-  // error they remove (informative 5.9). Measured best: 0.3 for the B-spline
-  // wavelets, 0.4 for 9/7 (St Helens and Everest at 1 and 2 bits/sample).
-  const double rounding = coarsest ? 0.5 : wavelet::isCdf97(wavelet_.order) ? 0.4 : 0.3;
-  const double gain = band_gain_[index];
-  const int64_t q_limit = wavelet::kValueLimit / static_cast<int64_t>(step);
-  q->assign(uint64_t{band.size[0]} * band.size[1] * band.size[2], 0);
-  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
-  // Rate-distortion optimised quantisation (rd_quantizer.h) for detail bands
-  // under the global rate or PSNR oracles with range coding. Lambda = 0.09
-  // squared steps per bit measured best on the terrains at 0.5 to 2
-  // bits/sample (+0.13 to +0.25 dB over the dead zone below; 0.05 and 0.13 are
-  // worse). Below a step of half a sample unit the decoder's rounding to
-  // integer samples hides most errors, and the coefficient-domain estimate
-  // misleads (the chest CT at 2 bits/sample, 96.7 dB, lost 2.2 dB), so there
-  // the dead zone stays.
-  constexpr double kRdLambda = 0.09;
-  if (!coarsest && !has_roi_ && keep_threshold_ == 0 && wavelet_.entropy_mode == kEntropyAdaptive &&
-      (!integerSamples() || delta * scale_ >= 0.5)) {
-    std::vector<double> scaled(q->size());
+  const bool oracles = !coarsest && (keep_threshold_ > 0 || has_roi_);
+  // Inside a region of interest the step is roi_gain times finer.
+  const BandQuantizer quantizer =
+      bandQuantizer(setup_, index, delta, integerSamples(), has_roi_ ? roi_gain_ : 1.0, oracles);
+  const ArrayBox box{{band.size[0], band.size[1], band.size[2]}, setup_.plan.num_dims};
+  q->assign(box.count(), 0);
+  const uint64_t px = setup_.plan.axis[0].size(0), pxy = px * setup_.plan.axis[1].size(0);
+  std::vector<double> c(box.count());
+  for (uint32_t z = 0, k = 0; z < band.size[2]; ++z)
+    for (uint32_t y = 0; y < band.size[1]; ++y, k += band.size[0]) {
+      const size_t at = band.offset[0] + (band.offset[1] + y) * px + (band.offset[2] + z) * pxy;
+      std::copy(coefficients_.data() + at, coefficients_.data() + at + band.size[0], c.data() + k);
+    }
+  bool any = false;
+  if (oracles) {
+    const double gain = setup_.band_gain[index];
     size_t k = 0;
     for (uint32_t z = 0; z < band.size[2]; ++z)
       for (uint32_t y = 0; y < band.size[1]; ++y) {
-        const double* row = coefficients_.data() + band.offset[0] + (band.offset[1] + y) * px +
-                            (band.offset[2] + z) * pxy;
-        for (uint32_t x = 0; x < band.size[0]; ++x) scaled[k++] = row[x] * inv;
-      }
-    return rdQuantizeArray(scaled.data(), ArrayBox{{band.size[0], band.size[1], band.size[2]}, plan_.num_dims},
-                           kRdLambda, q_limit, q->data()) ? step : 0;
-  }
-  bool any = false;
-  size_t k = 0;
-  for (uint32_t z = 0; z < band.size[2]; ++z)
-    for (uint32_t y = 0; y < band.size[1]; ++y) {
-      const size_t at = band.offset[0] + (band.offset[1] + y) * px + (band.offset[2] + z) * pxy;
-      const double* row = coefficients_.data() + at;
-      for (uint32_t x = 0; x < band.size[0]; ++x, ++k) {
-        if (!coarsest && (keep_threshold_ > 0 || has_roi_)) {
-          double w = has_roi_ ? weight_[at + x] : 1.0;
-          double importance = std::fabs(row[x]) * gain * w;
-          bool touches_roi = has_roi_ && w >= 1.0;  // support-aware: never dropped
-          if (!touches_roi && importance < (keep_threshold_ > 0 ? keep_threshold_ : 0.6 * delta))
-            continue;
+        const size_t at = band.offset[0] + (band.offset[1] + y) * px + (band.offset[2] + z) * pxy;
+        for (uint32_t x = 0; x < band.size[0]; ++x, ++k) {
+          const double w = has_roi_ ? weight_[at + x] : 1.0;
+          const double importance = std::fabs(c[k]) * gain * w;
+          const bool touches_roi = has_roi_ && w >= 1.0;  // support-aware: never dropped
+          if (!touches_roi && importance < (keep_threshold_ > 0 ? keep_threshold_ : 0.6 * delta)) c[k] = 0;
         }
-        double c = row[x] * inv;
-        int64_t v = static_cast<int64_t>(std::floor(std::fabs(c) + rounding));
-        v = std::min(v, q_limit);
-        (*q)[k] = c < 0 ? -v : v;
-        any |= v != 0;
       }
+  }
+  if (setup_.header.precinct_log2 == 0) {
+    any = quantizeArray(quantizer, c.data(), box, q->data());
+  } else {
+    const int axis_levels[3] = {setup_.header.levels[0], setup_.header.levels[1], setup_.header.levels[2]};
+    int resolution[3];
+    bandResolution(band.level, axis_levels, resolution);
+    std::vector<double> block_c;
+    std::vector<int64_t> block_q;
+    const size_t row = box.size[0], slice = row * box.size[1];
+    for (const ArrayBlock& b : arrayBlocks(box, resolution, setup_.header.precinct_log2)) {
+      block_c.resize(b.box.count());
+      block_q.resize(b.box.count());
+      copyBlockOut(c.data(), row, slice, b, block_c.data());
+      any |= quantizeArray(quantizer, block_c.data(), b.box, block_q.data());
+      copyBlockIn(block_q.data(), b, q->data(), row, slice);
     }
-  // A lone +-1 among zeros costs many bits (its zero flag is coded in the
-  // quietest context, 5.7.3) for little error: it is kept only when |c| is at
-  // least 0.9 steps. Measured: +0.05 to +0.13 dB at 1 bit/sample.
-  if (!coarsest && any && !has_roi_ && keep_threshold_ == 0) any = dropLoneUnits(band, inv, q);
-  return any ? step : 0;
+  }
+  return any ? quantizer.step : 0;
 }
 
 std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
-  const Band& band = bands_[index];
+  const Band& band = setup_.bands[index];
   const bool coarsest = band.mask == 0;
   std::vector<int64_t> q;
   uint64_t step = quantizeBand(index, delta, &q);
@@ -517,55 +275,41 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
   w.u64(step);
   if (!step) return payload;
   ArrayBox box;
-  box.num_dims = plan_.num_dims;
+  box.num_dims = setup_.plan.num_dims;
   for (int a = 0; a < 3; ++a) box.size[a] = band.size[a];
-  const int axis_levels[3] = {wavelet_.levels[0], wavelet_.levels[1], wavelet_.levels[2]};
+  const int axis_levels[3] = {setup_.header.levels[0], setup_.header.levels[1], setup_.header.levels[2]};
   int resolution[3];
   bandResolution(band.level, axis_levels, resolution);
   if (!coarsest) {
-    encodeBlockedArray(wavelet_, q.data(), box, resolution, ArrayPrediction::kNone, nullptr, nullptr,
+    encodeBlockedArray(setup_.header, q.data(), box, resolution, ArrayPrediction::kNone, nullptr, nullptr,
                        &payload);
     return payload;
   }
   // The coarsest block is coded with neighbour prediction and, with range
   // coding, also with weighted prediction; the smaller one is kept (5.9).
-  // Weighted prediction wins on terrains, the Lorenzo predictor on most CT volumes.
   const bool samples = box.count() == valid_.size() && valid_count_ < valid_.size();
-  std::vector<uint8_t> best;
-  uint8_t best_flags = 0;
-  for (uint8_t code : {kBandPredictionNeighbour, kBandPredictionWeighted}) {
-    if (code == kBandPredictionWeighted && wavelet_.entropy_mode != kEntropyAdaptive) continue;
-    if (prediction_ != WaveletEncodeOptions::Prediction::kAuto &&
-        prediction_ != (code == kBandPredictionWeighted ? WaveletEncodeOptions::Prediction::kWeighted
-                                                       : WaveletEncodeOptions::Prediction::kNeighbour))
-      continue;
-    const ArrayPrediction prediction = static_cast<ArrayPrediction>(code);
-    std::vector<int64_t> values = q;
-    std::vector<uint8_t> coded;
-    encodeBlockedArray(wavelet_, values.data(), box, resolution, prediction, nullptr,
-                       samples ? valid_.data() : nullptr, &coded);
-    if (best_flags == 0 || coded.size() < best.size()) {
-      best.swap(coded);
-      best_flags = code;
-    }
-  }
-  payload[2] = best_flags;
-  payload.insert(payload.end(), best.begin(), best.end());
+  const uint8_t choice = prediction_ == WaveletEncodeOptions::Prediction::kNeighbour ? kBandPredictionNeighbour
+                         : prediction_ == WaveletEncodeOptions::Prediction::kWeighted ? kBandPredictionWeighted
+                                                                                     : 0;
+  std::vector<uint8_t> coded;
+  payload[2] = encodeCoarsestBand(setup_.header, q, box, resolution, choice, samples ? valid_.data() : nullptr,
+                                  &coded);
+  payload.insert(payload.end(), coded.begin(), coded.end());
   return payload;
 }
 
 void GridEncoder::l2Errors(double delta, WaveletEncodeReport* report) const {
   // e = c - dequantised c, in sample units (x units times scale).
   std::vector<double> e(coefficients_.size(), 0.0);
-  const double units = std::ldexp(1.0, wavelet_.frac_bits);
-  const uint64_t px = plan_.axis[0].size(0), pxy = px * plan_.axis[1].size(0);
+  const double units = std::ldexp(1.0, setup_.header.frac_bits);
+  const uint64_t px = setup_.plan.axis[0].size(0), pxy = px * setup_.plan.axis[1].size(0);
   std::vector<double> norms[3];
-  for (int a = 0; a < 3; ++a) norms[a] = wavelet::axisBasisNorms(plan_.axis[a]);
+  for (int a = 0; a < 3; ++a) norms[a] = wavelet::axisBasisNorms(setup_.plan.axis[a]);
   double estimate = 0;
   uint64_t kept = 0;
   std::vector<int64_t> q;
-  for (size_t b = 0; b < bands_.size(); ++b) {
-    const Band& band = bands_[b];
+  for (size_t b = 0; b < setup_.bands.size(); ++b) {
+    const Band& band = setup_.bands[b];
     uint64_t step = quantizeBand(static_cast<uint16_t>(b), delta, &q);
     size_t k = 0;
     for (uint32_t z = 0; z < band.size[2]; ++z)
@@ -573,28 +317,28 @@ void GridEncoder::l2Errors(double delta, WaveletEncodeReport* report) const {
         for (uint32_t x = 0; x < band.size[0]; ++x, ++k) {
           const uint32_t pos[3] = {band.offset[0] + x, band.offset[1] + y, band.offset[2] + z};
           const size_t at = pos[0] + pos[1] * px + pos[2] * pxy;
-          double d = (coefficients_[at] - static_cast<double>(q[k]) * static_cast<double>(step) / units) * scale_;
+          double d = (coefficients_[at] - static_cast<double>(q[k]) * static_cast<double>(step) / units) * setup_.scale;
           e[at] = d;
           kept += q[k] != 0;
           double n = norms[0][pos[0]] * norms[1][pos[1]] * norms[2][pos[2]];
           estimate += d * d * n * n;
         }
   }
-  report->l2_error = std::sqrt(functionSpaceNormSquared(plan_, bands_, e));
+  report->l2_error = std::sqrt(functionSpaceNormSquared(setup_.plan, setup_.bands, e));
   report->l2_error_orthogonal_estimate = std::sqrt(estimate);
   report->kept_coefficients = kept;
 }
 
 Error GridEncoder::encode(double delta, uint32_t residual_step, const Metadata& metadata,
                           std::vector<uint8_t>* out) {
-  WaveletHeader wh = wavelet_;
+  WaveletHeader wh = setup_.header;
   if (residual_step) wh.wavelet_flags |= kWaveletFlagHasResidual;
   ContainerWriter writer;
   writer.addChunk(kChunkGridHeader, serializeGridHeader(header_));
   if (!metadata.entries.empty()) writer.addChunk(kChunkMeta, serializeMetadata(metadata));
   writer.addChunk(kChunkWaveletHeader, serializeWaveletHeader(wh));
   if (wh.hasMask()) writer.addChunk(kChunkNodataMask, mask_chunk_);
-  for (size_t b = 0; b < bands_.size(); ++b)
+  for (size_t b = 0; b < setup_.bands.size(); ++b)
     writer.addChunk(kChunkBand, bandChunk(static_cast<uint16_t>(b), delta));
   if (residual_step) {
     // The residual is taken against what the normative decoder makes of the
@@ -633,7 +377,7 @@ std::vector<uint8_t> GridEncoder::residualChunk(const DecodedGrid& approx,
   ByteWriter w(&payload);
   w.u32(residual_step);
   const int full_resolution[3] = {0, 0, 0};
-  encodeBlockedArray(wavelet_, r.data(), box, full_resolution, ArrayPrediction::kNone, skip.data(),
+  encodeBlockedArray(setup_.header, r.data(), box, full_resolution, ArrayPrediction::kNone, skip.data(),
                      nullptr, &payload);
   return payload;
 }

@@ -111,6 +111,8 @@ void forgetPayloads(DecodedGrid* grid) {
   for (ChunkView& c : grid->container.chunks) c.payload = nullptr;
 }
 
+}  // namespace
+
 void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, std::vector<uint8_t>* samples) {
   // A grid decoded whole: its output position i stands for sample i * 2^K_a
   // (spec 5.8.3), so the region's lattice is a sub-box of it.
@@ -138,7 +140,6 @@ void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, st
       }
 }
 
-}  // namespace
 
 Error decodeGridRegion(ByteSource& source, const GridRegion& region, const DecodeOptions& options,
                        DecodedGrid* out) {

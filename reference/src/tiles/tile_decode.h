@@ -24,6 +24,10 @@ Error checkTileChunk(const ChunkView& chunk, const TileIndex& index, uint64_t k)
 // the samples g of the region with g a multiple of 2^levels on every axis.
 void regionOutputSize(const GridRegion& region, int levels, uint32_t size[3]);
 
+// The samples of `region` on its 2^levels lattice (spec 11.6) out of a grid
+// decoded whole with reduce_levels = `levels`.
+void cropWhole(const DecodedGrid& grid, const GridRegion& region, int levels, std::vector<uint8_t>* samples);
+
 // spec 11.6: a decode reduced by `levels` needs tile sizes that are multiples
 // of 2^levels on every axis with more than one tile; the error, or none.
 Error reducedLatticeError(const TileGrid& tiles, int levels);

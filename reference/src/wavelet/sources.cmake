@@ -14,7 +14,8 @@ set(MRSV_WAVELET_DECODE_SOURCES
   reference/src/wavelet/cdf97_kernels_avx512.cpp)
 set(MRSV_WAVELET_ENCODE_SOURCES
   reference/src/wavelet/transform_float.cpp
-  reference/src/wavelet/cdf97_float.cpp)
+  reference/src/wavelet/cdf97_float.cpp
+  reference/src/wavelet/strip_analysis.cpp)
 set(MRSV_WAVELET_DECODE_TESTS
   reference/tests/wavelet_plan_test.cpp
   reference/tests/wavelet_fixed_test.cpp

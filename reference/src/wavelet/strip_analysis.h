@@ -1,0 +1,45 @@
+// The CDF 9/7 analysis of one level computed a strip at a time along the
+// grid's slowest axis, for an encoder that does not hold the grid (informative
+// 5.9, out-of-core precincts). Every output value is computed from the same
+// inputs by the same operations as analyze() computes it, so the
+// coefficients are the same bits: the lifting steps reach 4 inputs either
+// side, and a strip read 8 rows beyond the outputs it keeps (from an even
+// row, so that the parities agree) makes its wrong values at the strip's own
+// ends only where no kept output looks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "wavelet/axis_plan.h"
+
+namespace mrsv::wavelet {
+
+// Level `level` of a grid plan whose axes all have the 9/7 order, along the
+// slowest axis s = num_dims - 1. A row is the level's input box less axis s
+// (box[0] values in 2-D, box[0] * box[1] in 3-D, x fastest).
+struct StripLevel {
+  int level = 1;
+  int axis = 0;           // s
+  uint32_t box[3] = {1, 1, 1};  // the level's input: size(level - 1) per axis
+  bool split = false;     // axis s is transformed at this level
+  uint32_t lows = 0;      // rows of the low part along s (box[s] when not split)
+  uint32_t highs = 0;     // rows of the high part (0 when not split)
+  uint64_t rowSize() const;
+};
+
+StripLevel stripLevel(const GridPlan& plan, int level);
+
+// The input rows [*first, *first + *count) that outputs [k0, k1) of the low
+// and of the high part need.
+void stripInput(const StripLevel& s, uint32_t k0, uint32_t k1, uint32_t* first, uint32_t* count);
+
+// One level over a strip: `in` holds input rows [first, first + count) as
+// stripInput() gave them (overwritten). `out` receives the low rows
+// [k0, min(k1, lows)) then the high rows [k0, min(k1, highs)), each
+// transformed along every axis split at this level, in the Mallat layout of
+// the level's box less axis s.
+void analyzeStrip(const GridPlan& plan, const StripLevel& s, double* in, uint32_t first, uint32_t count,
+                  uint32_t k0, uint32_t k1, std::vector<double>* out);
+
+}  // namespace mrsv::wavelet
