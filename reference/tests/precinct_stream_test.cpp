@@ -123,13 +123,13 @@ void expectStripsEqualWhole(int num_dims, const uint32_t size[3], uint32_t edge,
   for (int level = 1; level <= plan.maxLevels(); ++level) {
     const wavelet::StripLevel s = wavelet::stripLevel(plan, level);
     const uint64_t row = s.rowSize();
-    std::vector<double> low, in, out;
+    std::vector<double> low, out;
     for (uint32_t k0 = 0; k0 < s.lows; k0 += edge) {
       const uint32_t k1 = std::min(k0 + edge, s.lows);
       uint32_t first, count;
       wavelet::stripInput(s, k0, k1, &first, &count);
-      in.assign(input.begin() + static_cast<long>(first * row), input.begin() + static_cast<long>((first + count) * row));
-      wavelet::analyzeStrip(plan, s, in.data(), first, count, k0, k1, &out);
+      out.assign(input.begin() + static_cast<long>(first * row), input.begin() + static_cast<long>((first + count) * row));
+      wavelet::analyzeStrip(plan, s, &out, first, count, k0, k1, 1 + static_cast<int>(k0 / edge % 3));
       const uint32_t lows = std::min(k1, s.lows) - k0, highs = k0 < s.highs ? std::min(k1, s.highs) - k0 : 0;
       ASSERT_EQ(out.size(), (lows + highs) * row);
       // Compare with the whole analysis: output row r of the strip is the

@@ -111,59 +111,93 @@ struct SpilledArray {
   }
 };
 
-// Codes blocks of an array into `spill`: the blocks [first, first + count) of
-// the array's block grid with index along the slowest axis `row`, each copied
-// from `values` (the strip of the array holding that block row, contiguous
-// over `strip`, starting at the block row's first position).
+// Codes blocks of an array into a spill: the blocks whose indices lie in
+// [first, last] along each axis, each copied from a source box (contiguous,
+// x fastest) that holds them, at `origin` in the array.
 class BlockCoder {
  public:
   BlockCoder(const WaveletHeader& wh, Spill* spill, int threads) : wh_(wh), spill_(spill), threads_(threads) {}
 
-  // `quantize`: fills a block's integers from its position (origin in the
-  // array) and box; returns false for a block of zeros.
-  template <typename Quantize>
-  Error codeRow(const ArrayBox& array_box, const int resolution[3], uint32_t row, SpilledArray* out,
-                const uint8_t* skip_strip, const ArrayBox& strip, const Quantize& quantize) {
-    uint32_t edge[3], count[3];
+  // The block grid of `array_box`.
+  void grid(const ArrayBox& array_box, const int resolution[3], uint32_t edge[3], uint32_t count[3]) const {
     blockGrid(array_box, resolution, wh_.precinct_log2, edge, count);
-    const int s = array_box.num_dims - 1;
+  }
+
+  // The coded blocks of a box of blocks, waiting to be stored in order.
+  struct Coded {
+    std::vector<uint64_t> index;
+    std::vector<std::vector<uint8_t>> bytes;
+  };
+
+  // Codes the blocks whose indices lie in [first, last] along each axis,
+  // `threads` at once. `quantize(local, q)`: fills a block's integers from
+  // its box `local` (origin within the source box); false for a block of
+  // zeros. `skip`: the source box's skip flags, or null.
+  template <typename Quantize>
+  Coded encode(const ArrayBox& array_box, const int resolution[3], const uint32_t first[3], const uint32_t last[3],
+               const uint32_t origin[3], const ArrayBox& source, const uint8_t* skip, int threads,
+               const Quantize& quantize) const {
+    uint32_t edge[3], count[3];
+    grid(array_box, resolution, edge, count);
+    Coded out;
+    std::vector<ArrayBlock> local;
+    for (uint32_t k = first[2]; k <= last[2]; ++k)
+      for (uint32_t j = first[1]; j <= last[1]; ++j)
+        for (uint32_t i = first[0]; i <= last[0]; ++i) {
+          const uint32_t at[3] = {i, j, k};
+          ArrayBlock b = blockAt(array_box, edge, at);
+          for (int a = 0; a < 3; ++a) b.origin[a] -= origin[a];
+          local.push_back(b);
+          out.index.push_back(i + uint64_t{count[0]} * (j + uint64_t{count[1]} * k));
+        }
+    out.bytes.resize(local.size());
+    const size_t row = source.size[0], slice = row * source.size[1];
+    parallelFor(local.size(), threads, [&](uint64_t i) {
+      std::vector<int64_t> q(local[i].box.count());
+      if (!quantize(local[i], q.data())) return;
+      std::vector<uint8_t> block_skip;
+      if (skip) {
+        block_skip.resize(local[i].box.count());
+        copyBlockOut(skip, row, slice, local[i], block_skip.data());
+      }
+      encodeArray(wh_.entropy_mode, q.data(), local[i].box, ArrayPrediction::kNone,
+                  skip ? block_skip.data() : nullptr, &out.bytes[i]);
+    });
+    return out;
+  }
+
+  // Appends coded blocks to the spill, in their order, and notes their places.
+  Error store(const ArrayBox& array_box, const int resolution[3], const Coded& coded, SpilledArray* out) {
     if (out->length.empty()) {
+      uint32_t edge[3], count[3];
+      grid(array_box, resolution, edge, count);
       const uint64_t n = uint64_t{count[0]} * count[1] * count[2];
       out->length.assign(n, 0);
       out->offset.assign(n, 0);
     }
-    const uint32_t per_row = s == 0 ? 1 : s == 1 ? count[0] : count[0] * count[1];
-    std::vector<std::vector<uint8_t>> coded(per_row);
-    std::vector<ArrayBlock> blocks(per_row);
-    for (uint32_t i = 0; i < per_row; ++i) {
-      uint32_t index[3] = {0, 0, 0};
-      index[0] = s == 0 ? row : i % count[0];
-      if (s >= 1) index[1] = s == 1 ? row : (i / count[0]) % count[1];
-      if (s == 2) index[2] = row;
-      blocks[i] = blockAt(array_box, edge, index);
-    }
-    const size_t srow = strip.size[0], sslice = srow * strip.size[1];
-    const uint32_t row_origin = blocks[0].origin[s];
-    parallelFor(per_row, threads_, [&](uint64_t i) {
-      ArrayBlock local = blocks[i];
-      local.origin[s] -= row_origin;  // within the strip
-      std::vector<int64_t> q(local.box.count());
-      if (!quantize(blocks[i], local, q.data())) return;
-      std::vector<uint8_t> block_skip;
-      if (skip_strip) {
-        block_skip.resize(local.box.count());
-        copyBlockOut(skip_strip, srow, sslice, local, block_skip.data());
-      }
-      encodeArray(wh_.entropy_mode, q.data(), local.box, ArrayPrediction::kNone,
-                  skip_strip ? block_skip.data() : nullptr, &coded[i]);
-    });
-    const uint64_t first = uint64_t{row} * per_row;
-    for (uint32_t i = 0; i < per_row; ++i) {
-      if (coded[i].empty()) continue;
-      out->length[first + i] = static_cast<uint32_t>(coded[i].size());
-      if (Error e = spill_->append(coded[i].data(), coded[i].size(), &out->offset[first + i]); !e.ok()) return e;
+    for (size_t i = 0; i < coded.index.size(); ++i) {
+      if (coded.bytes[i].empty()) continue;
+      out->length[coded.index[i]] = static_cast<uint32_t>(coded.bytes[i].size());
+      if (Error e = spill_->append(coded.bytes[i].data(), coded.bytes[i].size(), &out->offset[coded.index[i]]);
+          !e.ok())
+        return e;
     }
     return {};
+  }
+
+  // Every block of block row `row` along the slowest axis, from a strip
+  // holding that row whole.
+  template <typename Quantize>
+  Error codeRow(const ArrayBox& array_box, const int resolution[3], uint32_t row, const ArrayBox& strip,
+                const uint8_t* skip, SpilledArray* out, const Quantize& quantize) {
+    uint32_t edge[3], count[3];
+    grid(array_box, resolution, edge, count);
+    const int s = array_box.num_dims - 1;
+    uint32_t first[3] = {0, 0, 0}, last[3] = {count[0] - 1, count[1] - 1, count[2] - 1}, origin[3] = {0, 0, 0};
+    first[s] = last[s] = row;
+    origin[s] = row * edge[s];
+    return store(array_box, resolution, encode(array_box, resolution, first, last, origin, strip, skip, threads_, quantize),
+                 out);
   }
 
  private:
@@ -250,7 +284,7 @@ class PrecinctStreamEncoder {
   Error readRows(uint32_t first, uint32_t count, std::vector<uint8_t>* bytes);
   Error scan();
   Error levelInput(int level, uint32_t first, uint32_t count, std::vector<double>* rows);
-  Error fillVoids(uint32_t first, uint32_t count, std::vector<double>* x);
+  Error fillVoids(uint32_t first, uint32_t count, uint32_t line, double* x);
   void refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid, std::vector<double>* tile) const;
   Error analyzeLevel(int level, double delta);
   Error writeBands(ByteSink* stream);
@@ -341,8 +375,8 @@ Error PrecinctStreamEncoder::scan() {
     strip_box.size[s] = count;
     const int full_resolution[3] = {0, 0, 0};
     BlockCoder coder(setup_.header, &blocks_, run_.threads);
-    if (Error e = coder.codeRow(array, full_resolution, strip, &mask_, nullptr, strip_box,
-                                [&](const ArrayBlock&, const ArrayBlock& local, int64_t* q) {
+    if (Error e = coder.codeRow(array, full_resolution, strip, strip_box, nullptr, &mask_,
+                                [&](const ArrayBlock& local, int64_t* q) {
                                   copyBlockOut(mask.data(), strip_box.size[0],
                                                size_t{strip_box.size[0]} * strip_box.size[1], local, q);
                                   return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
@@ -360,37 +394,54 @@ Error PrecinctStreamEncoder::levelInput(int level, uint32_t first, uint32_t coun
   const uint64_t row = s.rowSize();
   rows->resize(row * count);
   if (level > 1) return level_low_->read(row * first * sizeof(double), row * count * sizeof(double), rows->data());
-  // Padded rows repeat the last sample row; within a row, the last sample of
-  // every axis is repeated (as analyzeSamples() pads).
+  // The sample rows in place (x units, voids 0 until filled), then the
+  // padding: the last sample of every axis repeated (as analyzeSamples()
+  // pads), rows past the grid copies of its last row.
   const uint32_t n = slowSize();
   const uint32_t lo = std::min(first, n - 1), hi = std::max(lo + 1, std::min(first + count, n));
+  const uint32_t px = s.box[0], py = num_dims_ == 3 ? s.box[1] : 1, sy = num_dims_ == 3 ? size_[1] : 1;
   std::vector<uint8_t> bytes;
   if (Error e = readRows(lo, hi - lo, &bytes); !e.ok()) return e;
-  std::vector<double> x(rowSamples() * (hi - lo));
-  for (size_t i = 0; i < x.size(); ++i) {
-    const uint8_t* p = bytes.data() + i * bytes_;
-    const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
-    x[i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
+  // Row r of `rows` holds sample row first + r; the rows read start at lo.
+  auto rowAt = [&](uint32_t sample_row) { return rows->data() + uint64_t{sample_row - first} * row; };
+  const uint32_t real_first = std::max(first, lo), real_end = std::min(first + count, hi);
+  for (uint32_t r = real_first; r < real_end; ++r) {
+    const uint8_t* p = bytes.data() + uint64_t{r - lo} * rowSamples() * bytes_;
+    double* dst = rowAt(r);
+    for (uint32_t y = 0; y < sy; ++y)
+      for (uint32_t i = 0; i < size_[0]; ++i, p += bytes_) {
+        const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
+        dst[uint64_t{y} * px + i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
+      }
   }
-  if (valid_count_ < header_.sampleCount())
-    if (Error e = fillVoids(lo, hi - lo, &x); !e.ok()) return e;
-  const uint32_t px = s.box[0], py = num_dims_ == 3 ? s.box[1] : 1, sy = num_dims_ == 3 ? size_[1] : 1;
-  for (uint32_t r = 0; r < count; ++r) {
-    const uint32_t src_row = std::min(first + r, n - 1) - lo;
-    double* dst = rows->data() + uint64_t{r} * row;
-    const double* src = x.data() + src_row * rowSamples();
+  bytes = {};
+  if (real_first < real_end && valid_count_ < header_.sampleCount())
+    if (Error e = fillVoids(real_first, real_end - real_first, px, rowAt(real_first)); !e.ok()) return e;
+  for (uint32_t r = real_first; r < real_end; ++r) {
+    double* dst = rowAt(r);
     for (uint32_t y = 0; y < py; ++y) {
-      const double* line = src + uint64_t{std::min(y, sy - 1)} * size_[0];
-      for (uint32_t i = 0; i < px; ++i) dst[uint64_t{y} * px + i] = line[std::min(i, size_[0] - 1)];
+      double* line = dst + uint64_t{y} * px;
+      if (y >= sy) std::copy(dst + uint64_t{sy - 1} * px, dst + uint64_t{sy} * px, line);
+      else std::fill(line + size_[0], line + px, line[size_[0] - 1]);
     }
+  }
+  // Rows past the grid: the last sample row, read for them when the strip
+  // holds no sample row at all.
+  if (real_first >= real_end) {
+    std::vector<double> last;
+    if (Error e = levelInput(1, n - 1, 1, &last); !e.ok()) return e;
+    for (uint32_t r = 0; r < count; ++r) std::copy(last.begin(), last.end(), rows->begin() + static_cast<long>(r * row));
+  } else {
+    for (uint32_t r = real_end; r < first + count; ++r) std::copy(rowAt(real_end - 1), rowAt(real_end - 1) + row, rowAt(r));
   }
   return {};
 }
 
-// Voids of sample rows [first, first + count) (values in `x`) filled by
-// pull-push within their fill tile (a precinct at full resolution), so that
-// every strip reading a tile fills it alike.
-Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, std::vector<double>* x) {
+// Voids of sample rows [first, first + count) filled by pull-push within
+// their fill tile (a precinct at full resolution), so that every strip
+// reading a tile fills it alike. `x`: those rows, `line` values per line
+// (the padded row length; lines of a row along y in 3-D).
+Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t line, double* x) {
   const uint32_t edge = stripRows();
   const int s = num_dims_ - 1;
   std::vector<uint8_t> bytes;
@@ -428,11 +479,11 @@ Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, std::vect
             const uint32_t pos[3] = {origin[0], origin[1] + j, origin[2] + k};
             if (pos[s] < first || pos[s] >= first + count) continue;
             uint64_t at = pos[0];
-            if (num_dims_ == 2) at += uint64_t{pos[1] - first} * size_[0];
-            if (num_dims_ == 3) at += (uint64_t{pos[2] - first} * size_[1] + pos[1]) * size_[0];
+            if (num_dims_ == 2) at += uint64_t{pos[1] - first} * line;
+            if (num_dims_ == 3) at += (uint64_t{pos[2] - first} * setup_.plan.axis[1].size(0) + pos[1]) * line;
             const size_t from = (size_t{k} * box[1] + j) * box[0];
             for (uint32_t i = 0; i < box[0]; ++i)
-              if (!valid[from + i]) (*x)[at + i] = tile[from + i];
+              if (!valid[from + i]) x[at + i] = tile[from + i];
           }
       }
   return {};
@@ -476,7 +527,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
   uint32_t low_box[3];
   for (int a = 0; a < 3; ++a) low_box[a] = setup_.plan.axis[a].size(level);
   const uint64_t row = s.rowSize();
-  std::vector<double> in, out, part;
+  std::vector<double> in, part;
   BlockCoder coder(wh, &blocks_, run_.threads);
   const uint32_t strips = (s.lows + edge - 1) / edge;
   for (uint32_t k = 0; k < strips; ++k) {
@@ -484,7 +535,8 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
     uint32_t first, count;
     wavelet::stripInput(s, k0, k1, &first, &count);
     if (Error e = levelInput(level, first, count, &in); !e.ok()) return e;
-    wavelet::analyzeStrip(setup_.plan, s, in.data(), first, count, k0, k1, &out);
+    wavelet::analyzeStrip(setup_.plan, s, &in, first, count, k0, k1, run_.threads);
+    const std::vector<double>& out = in;
     const uint32_t low_rows = std::min(k1, s.lows) - k0;
     const uint32_t high_rows = k0 < s.highs ? std::min(k1, s.highs) - k0 : 0;
     for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
@@ -513,8 +565,8 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
       const BandQuantizer quantizer = bandQuantizer(setup_, bi, delta, integer_);
       const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
       std::atomic<bool> nonzero{false};
-      if (Error e = coder.codeRow(band_box, resolution, k, &bands_[bi], nullptr, strip_box,
-                                  [&](const ArrayBlock&, const ArrayBlock& local, int64_t* q) {
+      if (Error e = coder.codeRow(band_box, resolution, k, strip_box, nullptr, &bands_[bi],
+                                  [&](const ArrayBlock& local, int64_t* q) {
                                     std::vector<double> c(local.box.count());
                                     copyBlockOut(part.data(), strip_box.size[0],
                                                  size_t{strip_box.size[0]} * strip_box.size[1], local, c.data());
@@ -575,75 +627,122 @@ Error PrecinctStreamEncoder::writeBands(ByteSink* stream) {
   return {};
 }
 
-// The bands decoded a strip of precincts at a time by region (the normative
-// decoder's samples): the error figures and, with `residual_step`, the
-// residual layer's blocks.
+// The bands decoded by region (the normative decoder's samples), a box of
+// whole precincts at a time, the boxes of a row of precincts decoded in
+// parallel: the error figures and, with `residual_step`, the residual layer's
+// blocks. A box holds about 2^19 samples, so that the region decoder's
+// windows stay small whatever the grid's width.
 Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally) {
-  SpillSource source(prefix);
-  const uint32_t edge = stripRows(), rows_total = slowSize();
+  const uint32_t edge = stripRows();
   const int s = num_dims_ - 1;
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_, run_.threads);
-  std::vector<uint8_t> input;
-  std::vector<int64_t> residual;
-  std::vector<uint8_t> skip;
+  const int threads = std::max(1, run_.threads);
+  // Precincts per box along each axis but the slowest (which takes one).
+  uint32_t per_box[3] = {1, 1, 1};
+  // The same boxes whatever the thread count, so that the error sums (and
+  // the meta chunk) are the same bits.
+  constexpr uint64_t box_samples = uint64_t{1} << 19;
+  for (uint64_t samples = uint64_t{edge} << (options_.precinct_log2 * (num_dims_ - 1)); samples < box_samples;) {
+    const int a = num_dims_ == 3 && per_box[1] < per_box[0] ? 1 : 0;
+    per_box[a] *= 2;
+    samples *= 2;
+  }
+  uint32_t count[3];
+  for (int a = 0; a < 3; ++a) count[a] = a < num_dims_ ? (size_[a] + edge - 1) / edge : 1;
+  // What decoding one box gave.
+  struct BoxResult {
+    uint32_t first[3], last[3], origin[3], box[3];
+    double sse = 0, max_abs = 0;
+    BlockCoder::Coded residual;
+    Error error;
+  };
   const int64_t rs = residual_step;
-  for (uint32_t row = 0, strip = 0; row < rows_total; row += edge, ++strip) {
-    const uint32_t count = std::min(edge, rows_total - row);
+  auto decodeBox = [&](BoxResult& b) {
+    SpillSource source(prefix);
     GridRegion region;
     for (int a = 0; a < 3; ++a) {
-      region.lo[a] = 0;
-      region.hi[a] = a < num_dims_ ? size_[a] : 1;
+      region.lo[a] = b.origin[a];
+      region.hi[a] = b.origin[a] + b.box[a];
     }
-    region.lo[s] = row;
-    region.hi[s] = row + count;
     DecodedGrid decoded;
-    if (Error e = decodeGridRegion(source, region, DecodeOptions{}, &decoded); !e.ok()) return e;
-    if (!decoded.region_by_precincts)
-      return Error{Status::kInvalidArgument, 0, "verify", "internal error: the stream was not decoded by precinct"};
-    if (Error e = readRows(row, count, &input); !e.ok()) return e;
-    const uint64_t n = rowSamples() * count;
-    if (residual_step) {
-      residual.assign(n, 0);
-      skip.assign(n, 0);
+    if (Error e = decodeGridRegion(source, region, DecodeOptions{}, &decoded); !e.ok()) {
+      b.error = e;
+      return;
     }
-    for (uint64_t i = 0; i < n; ++i) {
-      const uint8_t* p = input.data() + i * bytes_;
-      const uint8_t* d = decoded.samples.data() + i * bytes_;
-      if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes_) == 0) {
-        if (std::memcmp(d, &header_.nodata_bits, bytes_) != 0)
-          return Error{Status::kInvalidArgument, 0, "verify", "a void did not come back as no-data"};
-        if (residual_step) skip[i] = 1;
+    if (!decoded.region_by_precincts) {
+      b.error = Error{Status::kInvalidArgument, 0, "verify", "internal error: the stream was not decoded by precinct"};
+      return;
+    }
+    const uint64_t n = uint64_t{b.box[0]} * b.box[1] * b.box[2];
+    std::vector<uint8_t> input(n * bytes_);
+    std::string error;
+    if (!reader_.read(b.origin, b.box, input.data(), &error)) {
+      b.error = ioFailure(error);
+      return;
+    }
+    std::vector<int64_t> residual(residual_step ? n : 0, 0);
+    std::vector<uint8_t> skip(residual_step ? n : 0, 0);
+    for (uint64_t p = 0; p < n; ++p) {
+      const uint8_t* in = input.data() + p * bytes_;
+      const uint8_t* d = decoded.samples.data() + p * bytes_;
+      if (header_.hasNodata() && std::memcmp(in, &header_.nodata_bits, bytes_) == 0) {
+        if (std::memcmp(d, &header_.nodata_bits, bytes_) != 0) {
+          b.error = Error{Status::kInvalidArgument, 0, "verify", "a void did not come back as no-data"};
+          return;
+        }
+        if (residual_step) skip[p] = 1;
         continue;
       }
-      const double v = sampleValue(p, header_.sample_type), got = sampleValue(d, header_.sample_type);
-      double error = std::fabs(got - v);
+      const double v = sampleValue(in, header_.sample_type), got = sampleValue(d, header_.sample_type);
+      double error_here = std::fabs(got - v);
       if (residual_step) {
         // The nearest multiple of the odd step: |e - r * step| <= (step - 1) / 2,
-        // added to the decoded sample and clamped as the decoder does (5.8).
+        // added to the decoded sample and clamped as the decoder does (5.8.2).
         const int64_t e = static_cast<int64_t>(v) - static_cast<int64_t>(got);
         const int64_t r = e >= 0 ? (e + rs / 2) / rs : -((-e + rs / 2) / rs);
-        residual[i] = r;
-        const int64_t final = clampToType(static_cast<int64_t>(got) + r * rs, header_.sample_type);
-        error = std::fabs(static_cast<double>(final) - v);
+        residual[p] = r;
+        const int64_t final_value = clampToType(static_cast<int64_t>(got) + r * rs, header_.sample_type);
+        error_here = std::fabs(static_cast<double>(final_value) - v);
       }
-      tally->sse += error * error;
-      tally->max_abs = std::max(tally->max_abs, error);
+      b.sse += error_here * error_here;
+      b.max_abs = std::max(b.max_abs, error_here);
     }
-    if (residual_step) {
-      ArrayBox strip_box = array;
-      strip_box.size[s] = count;
-      if (Error e = coder.codeRow(array, full_resolution, strip, &residual_, skip.data(), strip_box,
-                                  [&](const ArrayBlock&, const ArrayBlock& local, int64_t* q) {
-                                    copyBlockOut(residual.data(), strip_box.size[0],
-                                                 size_t{strip_box.size[0]} * strip_box.size[1], local, q);
-                                    return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
-                                  });
-          !e.ok())
-        return e;
+    if (!residual_step) return;
+    const ArrayBox source_box{{b.box[0], b.box[1], b.box[2]}, num_dims_};
+    b.residual = coder.encode(array, full_resolution, b.first, b.last, b.origin, source_box, skip.data(), 1,
+                              [&](const ArrayBlock& local, int64_t* q) {
+                                copyBlockOut(residual.data(), b.box[0], size_t{b.box[0]} * b.box[1], local, q);
+                                return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
+                              });
+  };
+  for (uint32_t k = 0; k < count[s]; ++k) {
+    std::vector<BoxResult> boxes;
+    for (uint32_t j = 0; j < (num_dims_ == 3 ? count[1] : 1); j += per_box[1])
+      for (uint32_t i = 0; i < count[0]; i += per_box[0]) {
+        BoxResult b;
+        b.first[0] = i;
+        b.first[1] = j;
+        b.first[2] = 0;
+        b.first[s] = k;
+        for (int a = 0; a < 3; ++a) {
+          b.last[a] = a == s ? b.first[a] : std::min(b.first[a] + per_box[a], count[a]) - 1;
+          b.origin[a] = b.first[a] * edge;
+          b.box[a] = a < num_dims_ ? std::min((b.last[a] + 1) * edge, size_[a]) - b.origin[a] : 1;
+        }
+        boxes.push_back(std::move(b));
+      }
+    parallelFor(boxes.size(), threads, [&](uint64_t i) { decodeBox(boxes[i]); });
+    // In box order, whatever the thread count.
+    for (BoxResult& b : boxes) {
+      if (!b.error.ok()) return b.error;
+      tally->sse += b.sse;
+      tally->max_abs = std::max(tally->max_abs, b.max_abs);
+      if (residual_step)
+        if (Error e = coder.store(array, full_resolution, b.residual, &residual_); !e.ok()) return e;
     }
-    progress(0.75 + 0.25 * (row + count) / static_cast<double>(rows_total));
+    progress(0.7 + 0.3 * (k + 1) / static_cast<double>(count[s]));
   }
   return {};
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "common/parallel_for.h"
 #include "wavelet/cdf97.h"
 #include "wavelet/line_batches.h"
 
@@ -12,10 +13,23 @@ namespace {
 // Reach of the four lifting steps (4), doubled: an even number of rows.
 constexpr uint32_t kStripMargin = 8;
 
-// analyze()'s pass along one axis, over an array of `dims` (x fastest).
-void analyzeAxis(uint32_t dims[3], int axis, double* data, std::vector<double>* in, std::vector<double>* out) {
-  forEachLineBatch(dims, dims, axis, data, in, out, [&](double* src, double* dst, int width) {
-    analyzeCdf97Lines(src, dst, dims[axis], width);
+// analyze()'s pass along one axis, over an array of `dims` (x fastest), its
+// lines shared among `threads` threads (each line is computed alike
+// whichever thread has it, so the values are the same bits).
+void analyzeAxis(const uint32_t dims[3], int axis, double* data, int threads) {
+  // The lines are cut along another axis: x for y and z passes, else the slowest.
+  const int cut = axis != 0 ? 0 : dims[2] > 1 ? 2 : 1;
+  const uint64_t stride[3] = {1, dims[0], uint64_t{dims[0]} * dims[1]};
+  const uint32_t parts = static_cast<uint32_t>(std::clamp<int64_t>(threads, 1, std::max<uint32_t>(dims[cut] / 16, 1)));
+  parallelFor(parts, static_cast<int>(parts), [&](uint64_t part) {
+    const uint32_t lo = static_cast<uint32_t>(dims[cut] * part / parts);
+    const uint32_t hi = static_cast<uint32_t>(dims[cut] * (part + 1) / parts);
+    uint32_t box[3] = {dims[0], dims[1], dims[2]};
+    box[cut] = hi - lo;
+    std::vector<double> in, out;
+    forEachLineBatch(dims, box, axis, data + lo * stride[cut], &in, &out, [&](double* src, double* dst, int width) {
+      analyzeCdf97Lines(src, dst, box[axis], width);
+    });
   });
 }
 
@@ -50,31 +64,33 @@ void stripInput(const StripLevel& s, uint32_t k0, uint32_t k1, uint32_t* first, 
   *count = static_cast<uint32_t>(std::min<uint64_t>(n, hi + kStripMargin) - *first);
 }
 
-void analyzeStrip(const GridPlan& plan, const StripLevel& s, double* in, uint32_t first, uint32_t count,
-                  uint32_t k0, uint32_t k1, std::vector<double>* out) {
+void analyzeStrip(const GridPlan& plan, const StripLevel& s, std::vector<double>* rows, uint32_t first,
+                  uint32_t count, uint32_t k0, uint32_t k1, int threads) {
   const uint64_t row = s.rowSize();
-  std::vector<double> scratch_in, scratch_out;
   uint32_t dims[3] = {s.box[0], s.box[1], s.box[2]};
-  uint32_t kept = 0;
-  out->clear();
+  double* data = rows->data();
+  uint32_t kept = count;
   if (s.split) {
     dims[s.axis] = count;
-    analyzeAxis(dims, s.axis, in, &scratch_in, &scratch_out);
+    analyzeAxis(dims, s.axis, data, threads);
     // Strip-local Mallat layout: lows (count + 1) / 2 rows, then highs; local
     // row i of either part is the part's row first / 2 + i (first is even).
+    // The kept rows move down in place: each comes from at or after its
+    // destination, and rows are moved in increasing order.
     const uint32_t local_lows = (count + 1) / 2, base = first / 2;
     const uint32_t low_end = std::min(k1, s.lows), high_end = std::min(k1, s.highs);
-    for (uint32_t k = k0; k < low_end; ++k, ++kept)
-      out->insert(out->end(), in + (k - base) * row, in + (k - base + 1) * row);
-    for (uint32_t k = k0; k < high_end; ++k, ++kept)
-      out->insert(out->end(), in + (local_lows + k - base) * row, in + (local_lows + k - base + 1) * row);
-  } else {
-    kept = count;
-    out->assign(in, in + uint64_t{count} * row);
+    kept = 0;
+    auto keep = [&](uint64_t from) {
+      if (from != kept) std::copy(data + from * row, data + (from + 1) * row, data + uint64_t{kept} * row);
+      ++kept;
+    };
+    for (uint32_t k = k0; k < low_end; ++k) keep(k - base);
+    for (uint32_t k = k0; k < high_end; ++k) keep(local_lows + k - base);
   }
+  rows->resize(uint64_t{kept} * row);
   dims[s.axis] = kept;
   for (int a = s.axis - 1; a >= 0; --a)
-    if (plan.axis[a].levels >= s.level) analyzeAxis(dims, a, out->data(), &scratch_in, &scratch_out);
+    if (plan.axis[a].levels >= s.level) analyzeAxis(dims, a, rows->data(), threads);
 }
 
 }  // namespace mrsv::wavelet
