@@ -344,12 +344,50 @@ Error PrecinctStreamEncoder::scan() {
     if (Error e = readRows(row, count, &bytes); !e.ok()) return e;
     const uint64_t n = rowSamples() * count;
     mask.assign(n, 0);
+    // The samples in parts, one per thread; the parts' figures combine the
+    // same way whatever the count (min, max, sums, the first bad sample).
+    struct Part {
+      double lo = 0, hi = 0;
+      uint64_t valid = 0, bad = UINT64_MAX;
+      bool any_void = false;
+    };
+    const int threads = std::max(1, run_.threads);
+    std::vector<Part> parts(static_cast<size_t>(threads));
+    parallelFor(parts.size(), threads, [&](uint64_t t) {
+      Part& part = parts[t];
+      for (uint64_t i = n * t / parts.size(), end = n * (t + 1) / parts.size(); i < end; ++i) {
+        const uint8_t* p = bytes.data() + i * bytes_;
+        if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes_) == 0) {
+          mask[i] = 1;
+          part.any_void = true;
+          continue;
+        }
+        const double v = sampleValue(p, header_.sample_type);
+        if (!std::isfinite(v)) {
+          part.bad = std::min(part.bad, i);
+          continue;
+        }
+        part.lo = part.valid ? std::min(part.lo, v) : v;
+        part.hi = part.valid ? std::max(part.hi, v) : v;
+        ++part.valid;
+      }
+    });
     bool any_void = false;
-    for (uint64_t i = 0; i < n; ++i) {
-      const uint8_t* p = bytes.data() + i * bytes_;
-      if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes_) == 0) {
-        mask[i] = 1;
-        any_void = true;
+    for (const Part& part : parts) {
+      if (part.bad != UINT64_MAX)
+        return invalid("samples", "sample " + std::to_string(rowSamples() * row + part.bad) +
+                                      " is NaN or infinite; mark such samples with --nodata");
+      any_void |= part.any_void;
+      if (!part.valid) continue;
+      c_min_ = first_valid ? part.lo : std::min(c_min_, part.lo);
+      c_max_ = first_valid ? part.hi : std::max(c_max_, part.hi);
+      first_valid = false;
+      valid_count_ += part.valid;
+    }
+    // The fill tiles of the strip that hold voids.
+    if (any_void)
+      for (uint64_t i = 0; i < n; ++i) {
+        if (!mask[i]) continue;
         uint32_t pos[3] = {0, 0, 0};
         uint64_t rest = i;
         for (int a = 0; a < num_dims_; ++a) {
@@ -358,17 +396,7 @@ Error PrecinctStreamEncoder::scan() {
         }
         pos[s] += row;
         tile_has_void_[pos[0] / edge + fill_count_[0] * (pos[1] / edge + uint64_t{fill_count_[1]} * (pos[2] / edge))] = 1;
-        continue;
       }
-      const double v = sampleValue(p, header_.sample_type);
-      if (!std::isfinite(v))
-        return invalid("samples", "sample " + std::to_string(rowSamples() * row + i) +
-                                      " is NaN or infinite; mark such samples with --nodata");
-      c_min_ = first_valid ? v : std::min(c_min_, v);
-      c_max_ = first_valid ? v : std::max(c_max_, v);
-      first_valid = false;
-      ++valid_count_;
-    }
     if (!any_void) continue;
     ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
     ArrayBox strip_box = array;
@@ -392,6 +420,12 @@ Error PrecinctStreamEncoder::scan() {
 Error PrecinctStreamEncoder::levelInput(int level, uint32_t first, uint32_t count, std::vector<double>* rows) {
   const wavelet::StripLevel s = wavelet::stripLevel(setup_.plan, level);
   const uint64_t row = s.rowSize();
+  // Grown to the exact size, the old buffer freed first: a vector grown by
+  // resize() doubles and holds both while it moves (75 MB for a 25 MB strip).
+  if (rows->capacity() < row * count) {
+    *rows = std::vector<double>();
+    rows->reserve(row * count);
+  }
   rows->resize(row * count);
   if (level > 1) return level_low_->read(row * first * sizeof(double), row * count * sizeof(double), rows->data());
   // The sample rows in place (x units, voids 0 until filled), then the
@@ -405,7 +439,8 @@ Error PrecinctStreamEncoder::levelInput(int level, uint32_t first, uint32_t coun
   // Row r of `rows` holds sample row first + r; the rows read start at lo.
   auto rowAt = [&](uint32_t sample_row) { return rows->data() + uint64_t{sample_row - first} * row; };
   const uint32_t real_first = std::max(first, lo), real_end = std::min(first + count, hi);
-  for (uint32_t r = real_first; r < real_end; ++r) {
+  parallelFor(real_end > real_first ? real_end - real_first : 0, run_.threads, [&](uint64_t k) {
+    const uint32_t r = real_first + static_cast<uint32_t>(k);
     const uint8_t* p = bytes.data() + uint64_t{r - lo} * rowSamples() * bytes_;
     double* dst = rowAt(r);
     for (uint32_t y = 0; y < sy; ++y)
@@ -413,7 +448,7 @@ Error PrecinctStreamEncoder::levelInput(int level, uint32_t first, uint32_t coun
         const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
         dst[uint64_t{y} * px + i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
       }
-  }
+  });
   bytes = {};
   if (real_first < real_end && valid_count_ < header_.sampleCount())
     if (Error e = fillVoids(real_first, real_end - real_first, px, rowAt(real_first)); !e.ok()) return e;
@@ -639,13 +674,17 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_, run_.threads);
   const int threads = std::max(1, run_.threads);
-  // Precincts per box along each axis but the slowest (which takes one).
-  uint32_t per_box[3] = {1, 1, 1};
+  // Precincts per box along each axis, doubled on the axis with the fewest
+  // while the box stays within 2^19 samples: near-square boxes re-decode the
+  // fewest blocks around them (the synthesis reaches past a box's edges).
   // The same boxes whatever the thread count, so that the error sums (and
   // the meta chunk) are the same bits.
+  uint32_t per_box[3] = {1, 1, 1};
   constexpr uint64_t box_samples = uint64_t{1} << 19;
-  for (uint64_t samples = uint64_t{edge} << (options_.precinct_log2 * (num_dims_ - 1)); samples < box_samples;) {
-    const int a = num_dims_ == 3 && per_box[1] < per_box[0] ? 1 : 0;
+  for (uint64_t samples = uint64_t{1} << (options_.precinct_log2 * num_dims_); 2 * samples <= box_samples;) {
+    int a = 0;
+    for (int b = 1; b < num_dims_; ++b)
+      if (per_box[b] < per_box[a]) a = b;
     per_box[a] *= 2;
     samples *= 2;
   }
@@ -717,7 +756,7 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
                                 return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
                               });
   };
-  for (uint32_t k = 0; k < count[s]; ++k) {
+  for (uint32_t k = 0; k < count[s]; k += per_box[s]) {
     std::vector<BoxResult> boxes;
     for (uint32_t j = 0; j < (num_dims_ == 3 ? count[1] : 1); j += per_box[1])
       for (uint32_t i = 0; i < count[0]; i += per_box[0]) {
@@ -727,7 +766,7 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
         b.first[2] = 0;
         b.first[s] = k;
         for (int a = 0; a < 3; ++a) {
-          b.last[a] = a == s ? b.first[a] : std::min(b.first[a] + per_box[a], count[a]) - 1;
+          b.last[a] = std::min(b.first[a] + per_box[a], count[a]) - 1;
           b.origin[a] = b.first[a] * edge;
           b.box[a] = a < num_dims_ ? std::min((b.last[a] + 1) * edge, size_[a]) - b.origin[a] : 1;
         }
@@ -742,7 +781,7 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
       if (residual_step)
         if (Error e = coder.store(array, full_resolution, b.residual, &residual_); !e.ok()) return e;
     }
-    progress(0.7 + 0.3 * (k + 1) / static_cast<double>(count[s]));
+    progress(0.7 + 0.3 * std::min(k + per_box[s], count[s]) / static_cast<double>(count[s]));
   }
   return {};
 }
