@@ -190,6 +190,22 @@ TEST(PrecinctStream, BandsEqualTheInMemoryStreamAtAStep) {
   }
 }
 
+// A rate: the same bisection as the in-memory search of the full pyramid
+// (--progressive), a pass over the grid per step, so the same bands.
+TEST(PrecinctStream, ARateGivesTheInMemoryProgressiveBands) {
+  const test::SharedGrid g = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
+  WaveletEncodeOptions o;
+  o.precinct_log2 = 6;
+  o.bits_per_sample = 1;
+  o.progressive = true;
+  WaveletEncodeReport report;
+  const std::vector<uint8_t> ooc = outOfCore(g, o, 2, &report);
+  EXPECT_LE(ooc.size(), 317 * 460 / 8);
+  EXPECT_GT(ooc.size(), 0.99 * 317 * 460 / 8);
+  EXPECT_GT(report.iterations, 5);
+  EXPECT_EQ(codedChunks(ooc), codedChunks(inMemory(g, o)));
+}
+
 TEST(PrecinctStream, AVolumeEqualsTheInMemoryStream) {
   test::SharedGrid g = load("volume/ct_head_stanford_cthead_256x256x99_uint8.raw.zst");
   // A crop of 96 x 80 x 40 keeps the test short.
@@ -252,7 +268,7 @@ TEST(PrecinctStream, RefusesWhatItDoesNotDo) {
   EXPECT_FALSE(encodePrecinctGridFromReader(g.header, reader, Metadata{}, o, {}, sink, nullptr).ok());
   o.order = kWaveletOrderCdf97;
   o.step = 0;
-  o.bits_per_sample = 1;
+  o.psnr = 50;
   EXPECT_FALSE(encodePrecinctGridFromReader(g.header, reader, Metadata{}, o, {}, sink, nullptr).ok());
 }
 

@@ -133,11 +133,13 @@ struct PrecinctStreamOptions {
 // 5.9, decision D91): the analysis runs level by level over strips, every
 // level's low-pass part and every coded block wait in temporary files, and
 // the stream is written to `out`. Memory is bounded by a few strips of the
-// grid's width, not by the grid. A step, an error bound or lossless; no
-// rate or PSNR target, region of interest or keep fraction in this version.
-// Without voids, the band chunks (and the residual for the same steps) are
-// those encodeWaveletGrid() writes at the same step; voids are filled within
-// each precinct, not over the grid.
+// grid's width, not by the grid. A step, an error bound (the residual route,
+// one base step: D91), lossless, or a rate (the grid read once per step
+// tried, the full pyramid only, as with options.progressive); no PSNR
+// target, region of interest or keep fraction in this version. Without
+// voids, the band chunks are those encodeWaveletGrid() writes at the same
+// step (for a rate, with options.progressive); voids are filled within each
+// precinct, not over the grid.
 Error encodePrecinctGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
                                    const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
                                    ByteSink& out, WaveletEncodeReport* report);

@@ -273,6 +273,15 @@ class PrecinctStreamEncoder {
   Error encode(const Metadata& metadata, ByteSink& out, WaveletEncodeReport* report);
 
  private:
+  // The bands coded at one base step.
+  struct BandPass {
+    double delta = 0;                   // the base step (x units)
+    std::unique_ptr<Spill> blocks;      // the detail bands' coded blocks
+    std::vector<SpilledArray> bands;    // per band (detail bands)
+    std::vector<bool> any;              // a non-zero integer in the band
+    std::vector<uint8_t> coarsest;      // the coarsest band's chunk payload
+    uint64_t bytes = 0;                 // framed size of the band chunks
+  };
   // The grid's strips along its slowest axis: 2^P sample rows each.
   uint32_t stripRows() const { return 1u << options_.precinct_log2; }
   uint32_t slowSize() const { return size_[num_dims_ - 1]; }
@@ -286,8 +295,9 @@ class PrecinctStreamEncoder {
   Error levelInput(int level, uint32_t first, uint32_t count, std::vector<double>* rows);
   Error fillVoids(uint32_t first, uint32_t count, uint32_t line, double* x);
   void refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid, std::vector<double>* tile) const;
-  Error analyzeLevel(int level, double delta);
-  Error writeBands(ByteSink* stream);
+  Error analyzeLevel(int level, BandPass* pass);
+  Error writeBands(const BandPass& pass, ByteSink* stream);
+  Error searchRate(const GridHeader& h, const Metadata& metadata);
   Error decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally);
   void progress(double done) {
     if (run_.progress) run_.progress(std::min(done, 1.0));
@@ -307,14 +317,15 @@ class PrecinctStreamEncoder {
   // Fill tiles (precincts at full resolution): which hold voids.
   uint32_t fill_count_[3] = {1, 1, 1};
   std::vector<uint8_t> tile_has_void_;
-  Spill blocks_;                        // coded blocks of every array
+  Spill fills_;                         // the filled tiles' void values, in void order
+  std::vector<uint64_t> fill_at_;       // per fill tile: where, or UINT64_MAX (not filled yet)
+  std::vector<uint64_t> fill_count_of_; // per fill tile: how many voids
+  Spill blocks_;                        // coded blocks of the mask and the residual
   SpilledArray mask_, residual_;
-  std::vector<SpilledArray> bands_;     // per band (detail bands)
-  std::vector<int64_t> coarsest_q_;     // the coarsest band's integers
+  Error codeBands(double delta, BandPass* pass);
+  BandPass pass_;                       // the bands the stream takes
+  int iterations_ = 1;                  // passes over the grid (steps tried)
   std::vector<double> coarsest_;        // the coarsest band's coefficients
-  std::vector<bool> band_any_;          // a non-zero integer in the band
-  double delta_ = 0;                    // the base step (x units)
-  uint64_t coarsest_step_ = 0;
   std::unique_ptr<Spill> level_low_;    // the low-pass part of the level just analysed
 };
 
@@ -334,6 +345,9 @@ Error PrecinctStreamEncoder::scan() {
   const uint32_t edge = stripRows();
   for (int a = 0; a < 3; ++a) fill_count_[a] = (size_[a] + edge - 1) / edge;
   tile_has_void_.assign(uint64_t{fill_count_[0]} * fill_count_[1] * fill_count_[2], 0);
+  fill_at_.assign(tile_has_void_.size(), UINT64_MAX);
+  fill_count_of_.assign(tile_has_void_.size(), 0);
+  if (Error e = fills_.open(); !e.ok()) return e;
   const uint32_t rows_total = slowSize();
   std::vector<uint8_t> bytes;
   std::vector<int64_t> mask;
@@ -504,9 +518,25 @@ Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t 
           tile[i] = valid[i] ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
           any_valid |= valid[i] != 0;
         }
-        if (any_valid) {
-          fillVoidsPullPush(&tile, valid, box);
-          refineTileFill(box, valid, &tile);
+        // A tile is filled once: its void values wait in a file for the
+        // other strips and passes that read it.
+        const uint64_t tile_index = tx + fill_count_[0] * (ty + uint64_t{fill_count_[1]} * tz);
+        std::vector<double> fill;
+        if (fill_at_[tile_index] != UINT64_MAX) {
+          fill.resize(fill_count_of_[tile_index]);
+          if (Error e = fills_.read(fill_at_[tile_index], fill.size() * sizeof(double), fill.data()); !e.ok()) return e;
+          for (size_t i = 0, k = 0; i < n; ++i)
+            if (!valid[i]) tile[i] = fill[k++];
+        } else {
+          if (any_valid) {
+            fillVoidsPullPush(&tile, valid, box);
+            refineTileFill(box, valid, &tile);
+          }
+          for (size_t i = 0; i < n; ++i)
+            if (!valid[i]) fill.push_back(tile[i]);
+          fill_count_of_[tile_index] = fill.size();
+          if (Error e = fills_.append(fill.data(), fill.size() * sizeof(double), &fill_at_[tile_index]); !e.ok())
+            return e;
         }
         // Copy the tile's void values into the rows of `x` it shares.
         for (uint32_t k = 0; k < box[2]; ++k)
@@ -546,7 +576,8 @@ void PrecinctStreamEncoder::refineTileFill(const uint32_t box[3], const std::vec
 
 // One level: its strips of band rows, each analysed, its blocks coded, its
 // low-pass rows kept for the next level (or as the coarsest band).
-Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
+Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
+  const double delta = pass->delta;
   const wavelet::StripLevel s = wavelet::stripLevel(setup_.plan, level);
   const int a_s = s.axis;
   const WaveletHeader& wh = setup_.header;
@@ -563,7 +594,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
   for (int a = 0; a < 3; ++a) low_box[a] = setup_.plan.axis[a].size(level);
   const uint64_t row = s.rowSize();
   std::vector<double> in, part;
-  BlockCoder coder(wh, &blocks_, run_.threads);
+  BlockCoder coder(wh, pass->blocks.get(), run_.threads);
   const uint32_t strips = (s.lows + edge - 1) / edge;
   for (uint32_t k = 0; k < strips; ++k) {
     const uint32_t k0 = k * edge, k1 = std::min(k0 + edge, s.lows);
@@ -600,7 +631,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
       const BandQuantizer quantizer = bandQuantizer(setup_, bi, delta, integer_);
       const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
       std::atomic<bool> nonzero{false};
-      if (Error e = coder.codeRow(band_box, resolution, k, strip_box, nullptr, &bands_[bi],
+      if (Error e = coder.codeRow(band_box, resolution, k, strip_box, nullptr, &pass->bands[bi],
                                   [&](const ArrayBlock& local, int64_t* q) {
                                     std::vector<double> c(local.box.count());
                                     copyBlockOut(part.data(), strip_box.size[0],
@@ -611,7 +642,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
                                   });
           !e.ok())
         return e;
-      if (nonzero) band_any_[bi] = true;
+      if (nonzero) pass->any[bi] = true;
     }
     // The low-pass rows (every split axis low) for the next level.
     if (!top) {
@@ -626,38 +657,118 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, double delta) {
   return {};
 }
 
-// Writes the band chunks (GBND) in band order to `stream`.
-Error PrecinctStreamEncoder::writeBands(ByteSink* stream) {
+// Codes every band at base step `delta` into `pass`: the analysis level by
+// level, the detail bands' blocks as their strips are done, then the
+// coarsest band (quantised block by block as the in-memory encoder does, and
+// coded with both predictions). `pass->bytes`: the band chunks' framed size.
+Error PrecinctStreamEncoder::codeBands(double delta, BandPass* pass) {
+  *pass = BandPass{};
+  pass->delta = delta;
+  pass->blocks = std::make_unique<Spill>();
+  if (Error e = pass->blocks->open(); !e.ok()) return e;
+  pass->bands.assign(setup_.bands.size(), {});
+  pass->any.assign(setup_.bands.size(), false);
+  coarsest_.clear();
+  const int top = setup_.plan.maxLevels();
+  for (int level = 1; level <= top; ++level) {
+    if (Error e = analyzeLevel(level, pass); !e.ok()) return e;
+    if (!(options_.bits_per_sample > 0) || options_.step > 0 || options_.max_error >= 0)
+      progress(0.05 + 0.6 * level / top);  // one pass: its levels
+  }
   const WaveletHeader& wh = setup_.header;
   const int axis_levels[3] = {wh.levels[0], wh.levels[1], wh.levels[2]};
-  for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
-    const Band& band = setup_.bands[bi];
-    const bool coarsest = band.mask == 0;
-    const uint64_t step = coarsest ? coarsest_step_ : band_any_[bi] ? bandQuantizer(setup_, bi, delta_, integer_).step : 0;
+  const Band& band = setup_.bands[0];
+  const ArrayBox box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
+  int resolution[3];
+  bandResolution(band.level, axis_levels, resolution);
+  const BandQuantizer quantizer = bandQuantizer(setup_, 0, delta, integer_);
+  std::vector<int64_t> q_all(box.count(), 0);
+  bool any = false;
+  std::vector<double> c;
+  std::vector<int64_t> q;
+  const size_t row = box.size[0], slice = row * box.size[1];
+  for (const ArrayBlock& b : arrayBlocks(box, resolution, wh.precinct_log2)) {
+    c.resize(b.box.count());
+    q.resize(b.box.count());
+    copyBlockOut(coarsest_.data(), row, slice, b, c.data());
+    any |= quantizeArray(quantizer, c.data(), b.box, q.data());
+    copyBlockIn(q.data(), b, q_all.data(), row, slice);
+  }
+  ByteWriter w(&pass->coarsest);
+  w.u16(0);
+  w.u8(0);  // band_flags, set below
+  w.u8(0);
+  w.u64(any ? quantizer.step : 0);
+  if (any) {
+    const uint8_t choice = options_.prediction == WaveletEncodeOptions::Prediction::kNeighbour ? kBandPredictionNeighbour
+                           : options_.prediction == WaveletEncodeOptions::Prediction::kWeighted ? kBandPredictionWeighted
+                                                                                               : 0;
+    std::vector<uint8_t> coded;
+    pass->coarsest[2] = encodeCoarsestBand(wh, q_all, box, resolution, choice, nullptr, &coded);
+    pass->coarsest.insert(pass->coarsest.end(), coded.begin(), coded.end());
+  }
+  constexpr uint64_t kFraming = kChunkHeaderSize + kChunkCrcSize, kBandHead = 12;
+  pass->bytes = kFraming + pass->coarsest.size();
+  for (size_t bi = 1; bi < setup_.bands.size(); ++bi)
+    pass->bytes += kFraming + kBandHead + (pass->any[bi] ? pass->bands[bi].codedSize() : 0);
+  return {};
+}
+
+// spec 5.9 item 6 out of core: the base step bisected on its logarithm, a
+// pass over the grid per step tried (each pass's blocks in a file of its
+// own), keeping the smallest step whose stream fits the rate. The stream's
+// other chunks are counted with the error figures' largest text. Only the
+// full pyramid is searched (as --progressive does in memory).
+Error PrecinctStreamEncoder::searchRate(const GridHeader& h, const Metadata& metadata) {
+  ContainerWriter head;
+  head.addChunk(kChunkGridHeader, serializeGridHeader(h));
+  // The error figures' room, as the in-memory search reserves it (a rate
+  // records no error_bound).
+  Metadata probe = metadata;
+  for (const char* key : {"error_max_abs", "error_psnr_db", "error_rmse"}) probe.set(key, "-1.23457e+300");
+  head.addChunk(kChunkMeta, serializeMetadata(probe));
+  head.addChunk(kChunkWaveletHeader, serializeWaveletHeader(setup_.header));
+  constexpr uint64_t kFraming = kChunkHeaderSize + kChunkCrcSize;
+  uint64_t fixed = head.image().size() + kFraming;  // and MEND
+  if (setup_.header.hasMask()) fixed += kFraming + mask_.codedSize();
+  const double target = options_.bits_per_sample * static_cast<double>(h.sampleCount()) / 8.0;
+  const double r = std::max(c_max_ - c_min_, 1e-300) * (1.0 / setup_.scale);
+  double lo = std::log2(r) - 30, hi = std::log2(r) + 2;  // log2 of the step in x units
+  bool found = false;
+  BandPass trying;
+  iterations_ = 0;
+  for (int it = 0; it < 40 && hi - lo > 1e-3; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (Error e = codeBands(std::exp2(mid), &trying); !e.ok()) return e;
+    ++iterations_;
+    // A larger step gives a smaller stream.
+    if (static_cast<double>(fixed + trying.bytes) <= target) {
+      std::swap(pass_, trying);
+      found = true;
+      hi = mid;
+      if (static_cast<double>(fixed + pass_.bytes) >= 0.999 * target) break;
+    } else {
+      lo = mid;
+    }
+    progress(0.05 + 0.6 * std::min(1.0, (it + 1) / 15.0));
+  }
+  if (!found) return invalid("bits_per_sample", "the rate is too low for even the coarsest approximation");
+  return {};
+}
+
+// Writes the band chunks (GBND) of `pass` in band order to `stream`.
+Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) {
+  if (Error e = writeChunk(stream, kChunkBand, pass.coarsest); !e.ok()) return e;
+  for (size_t bi = 1; bi < setup_.bands.size(); ++bi) {
     std::vector<uint8_t> head;
     ByteWriter w(&head);
     w.u16(static_cast<uint16_t>(bi));
     w.u8(0);  // band_flags
     w.u8(0);
-    w.u64(step);
-    if (step == 0) {
-      if (Error e = writeChunk(stream, kChunkBand, head); !e.ok()) return e;
-    } else if (coarsest) {
-      const ArrayBox box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
-      int resolution[3];
-      bandResolution(band.level, axis_levels, resolution);
-      const uint8_t choice = options_.prediction == WaveletEncodeOptions::Prediction::kNeighbour
-                                 ? kBandPredictionNeighbour
-                             : options_.prediction == WaveletEncodeOptions::Prediction::kWeighted
-                                 ? kBandPredictionWeighted
-                                 : 0;
-      std::vector<uint8_t> coded;
-      head[2] = encodeCoarsestBand(wh, coarsest_q_, box, resolution, choice, nullptr, &coded);
-      head.insert(head.end(), coded.begin(), coded.end());
-      if (Error e = writeChunk(stream, kChunkBand, head); !e.ok()) return e;
-    } else {
-      if (Error e = writeBlockedChunk(stream, kChunkBand, head, bands_[bi], &blocks_); !e.ok()) return e;
-    }
+    w.u64(pass.any[bi] ? bandQuantizer(setup_, bi, pass.delta, integer_).step : 0);
+    Error e = pass.any[bi] ? writeBlockedChunk(stream, kChunkBand, head, pass.bands[bi], pass.blocks.get())
+                           : writeChunk(stream, kChunkBand, head);
+    if (!e.ok()) return e;
   }
   return {};
 }
@@ -801,10 +912,11 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
   if (!wavelet::isCdf97(options_.order)) return invalid("order", "out-of-core coding uses the CDF 9/7 wavelet only");
   if (options_.has_roi || options_.keep_fraction > 0)
     return invalid("options", "out-of-core coding takes no region of interest and no keep fraction in this version");
-  if (options_.bits_per_sample > 0 || options_.psnr > 0)
-    return invalid("options", "out-of-core precinct coding takes a step, an error bound or lossless in this version");
-  if (!(options_.step > 0) && options_.max_error < 0)
-    return invalid("options", "give a step, an error bound or lossless");
+  if (options_.psnr > 0)
+    return invalid("psnr", "out-of-core precinct coding takes a step, a rate, an error bound or lossless (a PSNR "
+                           "target would decode the grid once per step tried)");
+  if (!(options_.step > 0) && options_.max_error < 0 && !(options_.bits_per_sample > 0))
+    return invalid("options", "give a step, a rate, an error bound or lossless");
   if (options_.max_error >= 0 && !integer_)
     return invalid("max_error", "error bounds and lossless coding need integer samples in this version");
   const uint32_t d = options_.max_error >= 0 ? static_cast<uint32_t>(std::floor(options_.max_error)) : 0;
@@ -818,38 +930,17 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
   const int top = setup_.plan.maxLevels();
   if (top == 0) return invalid("grid", "the grid is too small for out-of-core coding (no level); code it in memory");
   const uint32_t residual_step = options_.max_error >= 0 ? 2 * d + 1 : 0;
-  // An error bound: the bands at boundBaseStep(), a residual layer keeping
-  // every sample within d.
-  delta_ = options_.max_error >= 0 ? boundBaseStep(residual_step) : options_.step * (1.0 / setup_.scale);
-  bands_.assign(setup_.bands.size(), {});
-  band_any_.assign(setup_.bands.size(), false);
-  for (int level = 1; level <= top; ++level) {
-    if (Error e = analyzeLevel(level, delta_); !e.ok()) return e;
-    progress(0.05 + 0.6 * level / top);
-  }
-  // The coarsest band, quantised block by block as the in-memory encoder does.
-  {
-    const Band& band = setup_.bands[0];
-    const ArrayBox box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
-    const int axis_levels[3] = {setup_.header.levels[0], setup_.header.levels[1], setup_.header.levels[2]};
-    int resolution[3];
-    bandResolution(band.level, axis_levels, resolution);
-    const BandQuantizer quantizer = bandQuantizer(setup_, 0, delta_, integer_);
-    coarsest_q_.assign(box.count(), 0);
-    bool any = false;
-    std::vector<double> c;
-    std::vector<int64_t> q;
-    const size_t row = box.size[0], slice = row * box.size[1];
-    for (const ArrayBlock& b : arrayBlocks(box, resolution, setup_.header.precinct_log2)) {
-      c.resize(b.box.count());
-      q.resize(b.box.count());
-      copyBlockOut(coarsest_.data(), row, slice, b, c.data());
-      any |= quantizeArray(quantizer, c.data(), b.box, q.data());
-      copyBlockIn(q.data(), b, coarsest_q_.data(), row, slice);
-    }
-    coarsest_step_ = any ? quantizer.step : 0;
-  }
   if (valid_count_ < h.sampleCount()) setup_.header.wavelet_flags |= kWaveletFlagHasMask;
+  if (options_.max_error < 0 && !(options_.step > 0)) {  // a rate (the error bound and the step come first)
+    if (Error e = searchRate(h, metadata); !e.ok()) return e;
+  } else {
+    // An error bound: the bands at boundBaseStep(), a residual layer keeping
+    // every sample within d.
+    const double delta =
+        options_.max_error >= 0 ? boundBaseStep(residual_step) : options_.step * (1.0 / setup_.scale);
+    if (Error e = codeBands(delta, &pass_); !e.ok()) return e;
+  }
+  progress(0.7);
   // The stream without meta and residual, to decode.
   Spill prefix;
   if (Error e = prefix.open(); !e.ok()) return e;
@@ -860,7 +951,7 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
   if (Error e = prefix.append(head.image().data(), head.image().size()); !e.ok()) return e;
   if (setup_.header.hasMask())
     if (Error e = writeBlockedChunk(&prefix, kChunkNodataMask, {}, mask_, &blocks_); !e.ok()) return e;
-  if (Error e = writeBands(&prefix); !e.ok()) return e;
+  if (Error e = writeBands(pass_, &prefix); !e.ok()) return e;
   const uint64_t prefix_body_end = prefix.size();
   if (Error e = writeChunk(&prefix, kChunkEnd, {}); !e.ok()) return e;
   progress(0.7);
@@ -904,9 +995,9 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
   written += kChunkHeaderSize + kChunkCrcSize;
   rep.bytes = written;
   rep.bits_per_sample = 8.0 * static_cast<double>(written) / static_cast<double>(h.sampleCount());
-  rep.base_step = delta_;
+  rep.base_step = pass_.delta;
   rep.residual_step = residual_step;
-  rep.iterations = 1;
+  rep.iterations = iterations_;
   progress(1);
   if (report) *report = rep;
   return {};
