@@ -256,6 +256,44 @@ TEST(PrecinctStream, BoundsHoldOnEverySampleWithVoids) {
   }
 }
 
+// 3-D with voids: the CT head's air (sample 0) as no-data, in pieces of
+// 16 x 16 x 16 precincts; lossless and a bound of 3 hold on every sample.
+TEST(PrecinctStream, AVolumeWithVoidsHoldsItsBounds) {
+  const test::SharedGrid g = load("volume/ct_head_stanford_cthead_256x256x99_uint8.raw.zst");
+  test::SharedGrid crop = g;
+  crop.header.size_x = 70;
+  crop.header.size_y = 90;
+  crop.header.size_z = 37;
+  crop.header.grid_flags |= kGridFlagHasNodata;
+  crop.header.nodata_bits = 0;
+  crop.samples.clear();
+  size_t voids = 0;
+  for (uint32_t z = 0; z < 37; ++z)
+    for (uint32_t y = 0; y < 90; ++y)
+      for (uint32_t x = 0; x < 70; ++x) {
+        crop.samples.push_back(g.samples[(uint64_t{40 + z} * 256 + 20 + y) * 256 + 90 + x]);
+        voids += crop.samples.back() == 0;
+      }
+  ASSERT_GT(voids, 1000u);
+  for (double bound : {0.0, 3.0}) {
+    WaveletEncodeOptions o;
+    o.precinct_log2 = 4;
+    o.max_error = bound;
+    WaveletEncodeReport report;
+    const DecodedGrid d = decode(outOfCore(crop, o, 2, &report));
+    ASSERT_EQ(d.samples.size(), crop.samples.size());
+    double worst = 0;
+    for (size_t i = 0; i < crop.samples.size(); ++i) {
+      if (crop.samples[i] == 0) {
+        ASSERT_EQ(d.samples[i], 0) << "void " << i;
+        continue;
+      }
+      worst = std::max(worst, std::fabs(double(crop.samples[i]) - d.samples[i]));
+    }
+    EXPECT_LE(worst, bound);
+  }
+}
+
 TEST(PrecinctStream, RefusesWhatItDoesNotDo) {
   const test::SharedGrid g = load("terrain/mt_st_helens_317x460_int16le.raw.zst");
   MemoryBoxReader reader(g.header, g.samples);

@@ -66,6 +66,19 @@ class Spill : public ByteSink {
     end_ += n;
     return {};
   }
+  // Writes at `offset` (a file written this way only: no buffered appends).
+  Error writeAt(uint64_t offset, const void* data, size_t n) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    end_ = std::max<uint64_t>(end_, offset + n);
+    while (n > 0) {
+      const ssize_t put = ::pwrite(fileno(file_.get()), p, n, static_cast<off_t>(offset));
+      if (put <= 0) return ioFailure("cannot write a temporary file");
+      p += put;
+      offset += static_cast<uint64_t>(put);
+      n -= static_cast<size_t>(put);
+    }
+    return {};
+  }
   Error read(uint64_t offset, size_t n, void* out) {
     if (std::fflush(file_.get()) != 0) return ioFailure("cannot write a temporary file");
     auto* p = static_cast<uint8_t*>(out);
@@ -292,8 +305,12 @@ class PrecinctStreamEncoder {
   }
   Error readRows(uint32_t first, uint32_t count, std::vector<uint8_t>* bytes);
   Error scan();
-  Error levelInput(int level, uint32_t first, uint32_t count, std::vector<double>* rows);
-  Error fillVoids(uint32_t first, uint32_t count, uint32_t line, double* x);
+  // A box of a level's input (levelInput()).
+  struct Piece {
+    uint32_t lo[3] = {0, 0, 0}, n[3] = {1, 1, 1};
+  };
+  Error levelInput(int level, const Piece& piece, std::vector<double>* out);
+  Error fillVoids(const uint32_t origin[3], const uint32_t box[3], double* x);
   void refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid, std::vector<double>* tile) const;
   Error analyzeLevel(int level, BandPass* pass);
   Error writeBands(const BandPass& pass, ByteSink* stream);
@@ -429,85 +446,87 @@ Error PrecinctStreamEncoder::scan() {
   return {};
 }
 
-// The level's input rows [first, first + count): for level 1 the padded
-// samples in x units (voids filled), else the low-pass part of the level before.
-Error PrecinctStreamEncoder::levelInput(int level, uint32_t first, uint32_t count, std::vector<double>* rows) {
-  const wavelet::StripLevel s = wavelet::stripLevel(setup_.plan, level);
-  const uint64_t row = s.rowSize();
+// The level's input over a piece: every x, lines [lo[1], lo[1] + n[1]) along
+// y and [lo[2], lo[2] + n[2]) along z (in 2-D y is the strip axis and n[2] is
+// 1), into `out` (x fastest, the padded row length). Level 1: the padded
+// samples in x units, voids filled; above: the low-pass part of the level before.
+Error PrecinctStreamEncoder::levelInput(int level, const Piece& piece, std::vector<double>* out) {
+  const uint32_t px = setup_.plan.axis[0].size(level - 1);
+  const uint64_t lines = uint64_t{piece.n[1]} * piece.n[2], values = lines * px;
   // Grown to the exact size, the old buffer freed first: a vector grown by
   // resize() doubles and holds both while it moves (75 MB for a 25 MB strip).
-  if (rows->capacity() < row * count) {
-    *rows = std::vector<double>();
-    rows->reserve(row * count);
+  if (out->capacity() < values) {
+    *out = std::vector<double>();
+    out->reserve(values);
   }
-  rows->resize(row * count);
-  if (level > 1) return level_low_->read(row * first * sizeof(double), row * count * sizeof(double), rows->data());
-  // The sample rows in place (x units, voids 0 until filled), then the
-  // padding: the last sample of every axis repeated (as analyzeSamples()
-  // pads), rows past the grid copies of its last row.
-  const uint32_t n = slowSize();
-  const uint32_t lo = std::min(first, n - 1), hi = std::max(lo + 1, std::min(first + count, n));
-  const uint32_t px = s.box[0], py = num_dims_ == 3 ? s.box[1] : 1, sy = num_dims_ == 3 ? size_[1] : 1;
-  std::vector<uint8_t> bytes;
-  if (Error e = readRows(lo, hi - lo, &bytes); !e.ok()) return e;
-  // Row r of `rows` holds sample row first + r; the rows read start at lo.
-  auto rowAt = [&](uint32_t sample_row) { return rows->data() + uint64_t{sample_row - first} * row; };
-  const uint32_t real_first = std::max(first, lo), real_end = std::min(first + count, hi);
-  parallelFor(real_end > real_first ? real_end - real_first : 0, run_.threads, [&](uint64_t k) {
-    const uint32_t r = real_first + static_cast<uint32_t>(k);
-    const uint8_t* p = bytes.data() + uint64_t{r - lo} * rowSamples() * bytes_;
-    double* dst = rowAt(r);
-    for (uint32_t y = 0; y < sy; ++y)
-      for (uint32_t i = 0; i < size_[0]; ++i, p += bytes_) {
-        const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
-        dst[uint64_t{y} * px + i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
-      }
+  out->resize(values);
+  if (level > 1) {
+    const uint64_t ny = setup_.plan.axis[1].size(level - 1);
+    for (uint32_t z = 0; z < piece.n[2]; ++z)
+      if (Error e = level_low_->read(((piece.lo[2] + uint64_t{z}) * ny + piece.lo[1]) * px * sizeof(double),
+                                     uint64_t{piece.n[1]} * px * sizeof(double), out->data() + uint64_t{z} * piece.n[1] * px);
+          !e.ok())
+        return e;
+    return {};
+  }
+  // The samples the piece's lines stand for (a padded line repeats the last
+  // sample line of its axis), read as one box.
+  const uint32_t n_y = num_dims_ >= 2 ? size_[1] : 1, n_z = num_dims_ == 3 ? size_[2] : 1;
+  uint32_t origin[3] = {0, std::min(piece.lo[1], n_y - 1), std::min(piece.lo[2], n_z - 1)};
+  uint32_t box[3] = {size_[0], 0, 0};
+  box[1] = std::max(origin[1] + 1, std::min(piece.lo[1] + piece.n[1], n_y)) - origin[1];
+  box[2] = std::max(origin[2] + 1, std::min(piece.lo[2] + piece.n[2], n_z)) - origin[2];
+  std::vector<uint8_t> bytes(uint64_t{box[0]} * box[1] * box[2] * bytes_);
+  std::string error;
+  if (!reader_.read(origin, box, bytes.data(), &error)) return ioFailure(error);
+  std::vector<double> x(uint64_t{box[0]} * box[1] * box[2]);
+  parallelFor(uint64_t{box[1]} * box[2], run_.threads, [&](uint64_t line) {
+    const uint8_t* p = bytes.data() + line * box[0] * bytes_;
+    double* dst = x.data() + line * box[0];
+    for (uint32_t i = 0; i < box[0]; ++i, p += bytes_) {
+      const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
+      dst[i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
+    }
   });
   bytes = {};
-  if (real_first < real_end && valid_count_ < header_.sampleCount())
-    if (Error e = fillVoids(real_first, real_end - real_first, px, rowAt(real_first)); !e.ok()) return e;
-  for (uint32_t r = real_first; r < real_end; ++r) {
-    double* dst = rowAt(r);
-    for (uint32_t y = 0; y < py; ++y) {
-      double* line = dst + uint64_t{y} * px;
-      if (y >= sy) std::copy(dst + uint64_t{sy - 1} * px, dst + uint64_t{sy} * px, line);
-      else std::fill(line + size_[0], line + px, line[size_[0] - 1]);
+  if (valid_count_ < header_.sampleCount())
+    if (Error e = fillVoids(origin, box, x.data()); !e.ok()) return e;
+  for (uint32_t z = 0; z < piece.n[2]; ++z)
+    for (uint32_t y = 0; y < piece.n[1]; ++y) {
+      const uint32_t sz = std::min(piece.lo[2] + z, n_z - 1) - origin[2], sy = std::min(piece.lo[1] + y, n_y - 1) - origin[1];
+      const double* src = x.data() + (uint64_t{sz} * box[1] + sy) * box[0];
+      double* dst = out->data() + (uint64_t{z} * piece.n[1] + y) * px;
+      std::copy(src, src + size_[0], dst);
+      std::fill(dst + size_[0], dst + px, src[size_[0] - 1]);
     }
-  }
-  // Rows past the grid: the last sample row, read for them when the strip
-  // holds no sample row at all.
-  if (real_first >= real_end) {
-    std::vector<double> last;
-    if (Error e = levelInput(1, n - 1, 1, &last); !e.ok()) return e;
-    for (uint32_t r = 0; r < count; ++r) std::copy(last.begin(), last.end(), rows->begin() + static_cast<long>(r * row));
-  } else {
-    for (uint32_t r = real_end; r < first + count; ++r) std::copy(rowAt(real_end - 1), rowAt(real_end - 1) + row, rowAt(r));
-  }
   return {};
 }
 
-// Voids of sample rows [first, first + count) filled by pull-push within
-// their fill tile (a precinct at full resolution), so that every strip
-// reading a tile fills it alike. `x`: those rows, `line` values per line
-// (the padded row length; lines of a row along y in 3-D).
-Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t line, double* x) {
+// The voids of the sample box at `origin` (values in `x`, x fastest over
+// `box`) filled by pull-push within their fill tile (a precinct at full
+// resolution), so that every piece reading a tile fills it alike.
+Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t box[3], double* x) {
   const uint32_t edge = stripRows();
-  const int s = num_dims_ - 1;
   std::vector<uint8_t> bytes;
-  for (uint32_t tz = 0; tz < fill_count_[2]; ++tz)
-    for (uint32_t ty = 0; ty < fill_count_[1]; ++ty)
-      for (uint32_t tx = 0; tx < fill_count_[0]; ++tx) {
+  uint32_t t_lo[3], t_hi[3];
+  for (int a = 0; a < 3; ++a) {
+    t_lo[a] = origin[a] / edge;
+    t_hi[a] = (origin[a] + box[a] - 1) / edge;
+  }
+  for (uint32_t tz = t_lo[2]; tz <= t_hi[2]; ++tz)
+    for (uint32_t ty = t_lo[1]; ty <= t_hi[1]; ++ty)
+      for (uint32_t tx = t_lo[0]; tx <= t_hi[0]; ++tx) {
+        const uint64_t tile_index = tx + fill_count_[0] * (ty + uint64_t{fill_count_[1]} * tz);
+        if (!tile_has_void_[tile_index]) continue;
         const uint32_t t[3] = {tx, ty, tz};
-        if (!tile_has_void_[tx + fill_count_[0] * (ty + uint64_t{fill_count_[1]} * tz)]) continue;
-        uint32_t origin[3], box[3];
+        uint32_t t_origin[3], t_box[3];
         for (int a = 0; a < 3; ++a) {
-          origin[a] = t[a] * edge;
-          box[a] = a < num_dims_ ? std::min(edge, size_[a] - origin[a]) : 1;
+          t_origin[a] = t[a] * edge;
+          t_box[a] = a < num_dims_ ? std::min(edge, size_[a] - t_origin[a]) : 1;
         }
-        if (origin[s] + box[s] <= first || origin[s] >= first + count) continue;
-        bytes.resize(uint64_t{box[0]} * box[1] * box[2] * bytes_);
+        bytes.resize(uint64_t{t_box[0]} * t_box[1] * t_box[2] * bytes_);
         std::string error;
-        if (!reader_.read(origin, box, bytes.data(), &error)) return ioFailure(error);
+        if (!reader_.read(t_origin, t_box, bytes.data(), &error)) return ioFailure(error);
         const size_t n = bytes.size() / bytes_;
         std::vector<double> tile(n);
         std::vector<uint8_t> valid(n);
@@ -519,8 +538,7 @@ Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t 
           any_valid |= valid[i] != 0;
         }
         // A tile is filled once: its void values wait in a file for the
-        // other strips and passes that read it.
-        const uint64_t tile_index = tx + fill_count_[0] * (ty + uint64_t{fill_count_[1]} * tz);
+        // other pieces and passes that read it.
         std::vector<double> fill;
         if (fill_at_[tile_index] != UINT64_MAX) {
           fill.resize(fill_count_of_[tile_index]);
@@ -529,8 +547,8 @@ Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t 
             if (!valid[i]) tile[i] = fill[k++];
         } else {
           if (any_valid) {
-            fillVoidsPullPush(&tile, valid, box);
-            refineTileFill(box, valid, &tile);
+            fillVoidsPullPush(&tile, valid, t_box);
+            refineTileFill(t_box, valid, &tile);
           }
           for (size_t i = 0; i < n; ++i)
             if (!valid[i]) fill.push_back(tile[i]);
@@ -538,17 +556,15 @@ Error PrecinctStreamEncoder::fillVoids(uint32_t first, uint32_t count, uint32_t 
           if (Error e = fills_.append(fill.data(), fill.size() * sizeof(double), &fill_at_[tile_index]); !e.ok())
             return e;
         }
-        // Copy the tile's void values into the rows of `x` it shares.
-        for (uint32_t k = 0; k < box[2]; ++k)
-          for (uint32_t j = 0; j < box[1]; ++j) {
-            const uint32_t pos[3] = {origin[0], origin[1] + j, origin[2] + k};
-            if (pos[s] < first || pos[s] >= first + count) continue;
-            uint64_t at = pos[0];
-            if (num_dims_ == 2) at += uint64_t{pos[1] - first} * line;
-            if (num_dims_ == 3) at += (uint64_t{pos[2] - first} * setup_.plan.axis[1].size(0) + pos[1]) * line;
-            const size_t from = (size_t{k} * box[1] + j) * box[0];
-            for (uint32_t i = 0; i < box[0]; ++i)
-              if (!valid[from + i]) x[at + i] = tile[from + i];
+        // The tile's void values where it meets the box.
+        for (uint32_t k = 0; k < t_box[2]; ++k)
+          for (uint32_t j = 0; j < t_box[1]; ++j) {
+            const uint32_t gy = t_origin[1] + j, gz = t_origin[2] + k;
+            if (gy < origin[1] || gy >= origin[1] + box[1] || gz < origin[2] || gz >= origin[2] + box[2]) continue;
+            double* dst = x + ((uint64_t{gz - origin[2]} * box[1]) + (gy - origin[1])) * box[0] + t_origin[0];
+            const size_t from = (size_t{k} * t_box[1] + j) * t_box[0];
+            for (uint32_t i = 0; i < t_box[0]; ++i)
+              if (!valid[from + i]) dst[i] = tile[from + i];
           }
       }
   return {};
@@ -574,85 +590,124 @@ void PrecinctStreamEncoder::refineTileFill(const uint32_t box[3], const std::vec
                  &coefficients);
 }
 
-// One level: its strips of band rows, each analysed, its blocks coded, its
-// low-pass rows kept for the next level (or as the coarsest band).
+// One level: its pieces (a strip of band rows along the slowest axis; in 3-D
+// cut again into strips along y, so that a piece needs a few rows of planes,
+// not whole planes), each analysed along z, y, x as analyze() does, its
+// blocks coded, its low-pass part kept for the next level (or as the
+// coarsest band).
 Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   const double delta = pass->delta;
-  const wavelet::StripLevel s = wavelet::stripLevel(setup_.plan, level);
-  const int a_s = s.axis;
+  const wavelet::GridPlan& plan = setup_.plan;
+  const int s = num_dims_ - 1;
+  const bool cut_y = num_dims_ == 3;
+  const wavelet::StripLevel along_s = wavelet::stripLevel(plan, level, s);
+  const wavelet::StripLevel along_y = wavelet::stripLevel(plan, level, 1);
   const WaveletHeader& wh = setup_.header;
   const int axis_levels[3] = {wh.levels[0], wh.levels[1], wh.levels[2]};
   int resolution[3];
   bandResolution(level, axis_levels, resolution);
-  const uint32_t edge = std::max((1u << wh.precinct_log2) >> resolution[a_s], kMinBlockEdge);
-  const bool top = level == setup_.plan.maxLevels();
+  uint32_t edge[3];
+  for (int a = 0; a < 3; ++a) edge[a] = std::max((1u << wh.precinct_log2) >> resolution[a], kMinBlockEdge);
+  const bool top = level == plan.maxLevels();
   auto next_low = std::make_unique<Spill>();
   if (!top)
     if (Error e = next_low->open(); !e.ok()) return e;
-  // The level's low-pass box less axis s, and the rows of a strip's output.
   uint32_t low_box[3];
-  for (int a = 0; a < 3; ++a) low_box[a] = setup_.plan.axis[a].size(level);
-  const uint64_t row = s.rowSize();
+  for (int a = 0; a < 3; ++a) low_box[a] = plan.axis[a].size(level);
+  if (top) coarsest_.assign(uint64_t{low_box[0]} * low_box[1] * low_box[2], 0.0);
+  const uint32_t px = along_s.box[0];
   std::vector<double> in, part;
   BlockCoder coder(wh, pass->blocks.get(), run_.threads);
-  const uint32_t strips = (s.lows + edge - 1) / edge;
-  for (uint32_t k = 0; k < strips; ++k) {
-    const uint32_t k0 = k * edge, k1 = std::min(k0 + edge, s.lows);
-    uint32_t first, count;
-    wavelet::stripInput(s, k0, k1, &first, &count);
-    if (Error e = levelInput(level, first, count, &in); !e.ok()) return e;
-    wavelet::analyzeStrip(setup_.plan, s, &in, first, count, k0, k1, run_.threads);
-    const std::vector<double>& out = in;
-    const uint32_t low_rows = std::min(k1, s.lows) - k0;
-    const uint32_t high_rows = k0 < s.highs ? std::min(k1, s.highs) - k0 : 0;
-    for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
-      const Band& band = setup_.bands[bi];
-      if (band.level != level && !(band.mask == 0 && top)) continue;
-      // The band's part of this strip, contiguous: rows along s of its own
-      // part (low or high), its box along the other axes.
-      const bool high_s = (band.mask >> a_s) & 1;
-      const uint32_t rows_here = high_s ? high_rows : low_rows;
-      if (rows_here == 0) continue;
-      ArrayBox strip_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
-      strip_box.size[a_s] = rows_here;
-      part.resize(strip_box.count());
-      const uint32_t first_row = high_s ? low_rows : 0;
-      const uint32_t sx = s.box[0];
-      for (uint32_t r = 0; r < rows_here; ++r)
-        for (uint32_t y = 0; y < (a_s == 2 ? band.size[1] : 1); ++y) {
-          const double* src = out.data() + (first_row + r) * row + (a_s == 2 ? (band.offset[1] + y) * sx : 0) +
-                              band.offset[0];
-          std::copy(src, src + band.size[0], part.data() + (uint64_t{r} * (a_s == 2 ? band.size[1] : 1) + y) * band.size[0]);
+  const uint32_t strips_s = (along_s.lows + edge[s] - 1) / edge[s];
+  const uint32_t strips_y = cut_y ? (along_y.lows + edge[1] - 1) / edge[1] : 1;
+  for (uint32_t k = 0; k < strips_s; ++k)
+    for (uint32_t j = 0; j < strips_y; ++j) {
+      // The piece's kept outputs along s (and y): [k0, k1), [j0, j1).
+      const uint32_t k0 = k * edge[s], k1 = std::min(k0 + edge[s], along_s.lows);
+      const uint32_t j0 = j * edge[1], j1 = cut_y ? std::min(j0 + edge[1], along_y.lows) : 0;
+      Piece piece;
+      uint32_t first_s, count_s, first_y = 0, count_y = along_s.box[1];
+      wavelet::stripInput(along_s, k0, k1, &first_s, &count_s);
+      if (cut_y) wavelet::stripInput(along_y, j0, j1, &first_y, &count_y);
+      piece.lo[1] = cut_y ? first_y : first_s;
+      piece.n[1] = cut_y ? count_y : count_s;
+      piece.lo[2] = cut_y ? first_s : 0;
+      piece.n[2] = cut_y ? count_s : 1;
+      if (Error e = levelInput(level, piece, &in); !e.ok()) return e;
+      uint32_t dims[3] = {px, piece.n[1], piece.n[2]};
+      wavelet::keepAlong(along_s, dims, &in, first_s, count_s, k0, k1, run_.threads);
+      if (cut_y) wavelet::keepAlong(along_y, dims, &in, first_y, count_y, j0, j1, run_.threads);
+      wavelet::analyzeBelow(plan, level, 1, dims, in.data(), run_.threads);
+      // Per axis above x: the piece's low lines, then its high lines.
+      uint32_t lows[3] = {0, 0, 0};
+      lows[s] = std::min(k1, along_s.lows) - k0;
+      if (cut_y) lows[1] = std::min(j1, along_y.lows) - j0;
+      for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
+        const Band& band = setup_.bands[bi];
+        if (band.level != level && !(band.mask == 0 && top)) continue;
+        // The band's part of this piece, contiguous over `part_box`.
+        uint32_t from[3] = {band.offset[0], 0, 0};
+        ArrayBox part_box{{band.size[0], 1, 1}, num_dims_};
+        for (int a = 1; a < num_dims_; ++a) {
+          const bool high = (band.mask >> a) & 1;
+          from[a] = high ? lows[a] : 0;
+          part_box.size[a] = high ? dims[a] - lows[a] : lows[a];
         }
-      if (band.mask == 0) {  // the coarsest band: kept whole
-        coarsest_.insert(coarsest_.end(), part.begin(), part.end());
-        continue;
+        if (part_box.count() == 0) continue;
+        part.resize(part_box.count());
+        for (uint32_t z = 0; z < part_box.size[2]; ++z)
+          for (uint32_t y = 0; y < part_box.size[1]; ++y) {
+            const double* src = in.data() + ((uint64_t{from[2] + z} * dims[1]) + from[1] + y) * dims[0] + from[0];
+            std::copy(src, src + band.size[0], part.data() + (uint64_t{z} * part_box.size[1] + y) * band.size[0]);
+          }
+        // The piece's first position in the band, and its block indices.
+        uint32_t at[3] = {0, 0, 0}, index[3] = {0, 0, 0};
+        at[s] = k0;
+        index[s] = k;
+        if (cut_y) {
+          at[1] = j0;
+          index[1] = j;
+        }
+        if (band.mask == 0) {  // the coarsest band: kept whole
+          for (uint32_t z = 0; z < part_box.size[2]; ++z)
+            for (uint32_t y = 0; y < part_box.size[1]; ++y)
+              std::copy(part.data() + (uint64_t{z} * part_box.size[1] + y) * band.size[0],
+                        part.data() + (uint64_t{z} * part_box.size[1] + y + 1) * band.size[0],
+                        coarsest_.data() + ((uint64_t{at[2] + z} * band.size[1]) + at[1] + y) * band.size[0]);
+          continue;
+        }
+        const BandQuantizer quantizer = bandQuantizer(setup_, bi, delta, integer_);
+        const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
+        uint32_t block_edge[3], block_count[3];
+        coder.grid(band_box, resolution, block_edge, block_count);
+        uint32_t last[3] = {block_count[0] - 1, index[1], index[2]};
+        std::atomic<bool> nonzero{false};
+        BlockCoder::Coded coded =
+            coder.encode(band_box, resolution, index, last, at, part_box, nullptr, run_.threads,
+                         [&](const ArrayBlock& local, int64_t* q) {
+                           std::vector<double> c(local.box.count());
+                           copyBlockOut(part.data(), part_box.size[0], size_t{part_box.size[0]} * part_box.size[1],
+                                        local, c.data());
+                           const bool some = quantizeArray(quantizer, c.data(), local.box, q);
+                           if (some) nonzero = true;
+                           return some;
+                         });
+        if (Error e = coder.store(band_box, resolution, coded, &pass->bands[bi]); !e.ok()) return e;
+        if (nonzero) pass->any[bi] = true;
       }
-      const BandQuantizer quantizer = bandQuantizer(setup_, bi, delta, integer_);
-      const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
-      std::atomic<bool> nonzero{false};
-      if (Error e = coder.codeRow(band_box, resolution, k, strip_box, nullptr, &pass->bands[bi],
-                                  [&](const ArrayBlock& local, int64_t* q) {
-                                    std::vector<double> c(local.box.count());
-                                    copyBlockOut(part.data(), strip_box.size[0],
-                                                 size_t{strip_box.size[0]} * strip_box.size[1], local, c.data());
-                                    const bool some = quantizeArray(quantizer, c.data(), local.box, q);
-                                    if (some) nonzero = true;
-                                    return some;
-                                  });
-          !e.ok())
-        return e;
-      if (nonzero) pass->any[bi] = true;
+      // The low-pass lines (every split axis low) for the next level, at
+      // their place in its input.
+      if (!top)
+        for (uint32_t z = 0; z < (cut_y ? lows[2] : 1); ++z)
+          for (uint32_t y = 0; y < lows[1]; ++y) {
+            const uint64_t gz = cut_y ? k0 + z : 0, gy = cut_y ? j0 + y : k0 + y;
+            const double* src = in.data() + ((uint64_t{z} * dims[1]) + y) * dims[0];
+            if (Error e = next_low->writeAt(((gz * low_box[1]) + gy) * low_box[0] * sizeof(double), src,
+                                            low_box[0] * sizeof(double));
+                !e.ok())
+              return e;
+          }
     }
-    // The low-pass rows (every split axis low) for the next level.
-    if (!top) {
-      const uint32_t lx = low_box[0], ly = a_s == 2 ? low_box[1] : 1;
-      const uint32_t sx = s.box[0];
-      for (uint32_t r = 0; r < low_rows; ++r)
-        for (uint32_t y = 0; y < ly; ++y)
-          if (Error e = next_low->append(out.data() + r * row + y * sx, lx * sizeof(double)); !e.ok()) return e;
-    }
-  }
   level_low_ = top ? nullptr : std::move(next_low);
   return {};
 }

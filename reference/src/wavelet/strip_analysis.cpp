@@ -41,10 +41,10 @@ uint64_t StripLevel::rowSize() const {
   return n;
 }
 
-StripLevel stripLevel(const GridPlan& plan, int level) {
+StripLevel stripLevel(const GridPlan& plan, int level, int axis) {
   StripLevel s;
   s.level = level;
-  s.axis = plan.num_dims - 1;
+  s.axis = axis < 0 ? plan.num_dims - 1 : axis;
   for (int a = 0; a < 3; ++a) s.box[a] = plan.axis[a].size(level - 1);
   s.split = plan.axis[s.axis].levels >= level;
   s.lows = s.split ? plan.axis[s.axis].size(level) : s.box[s.axis];
@@ -64,33 +64,45 @@ void stripInput(const StripLevel& s, uint32_t k0, uint32_t k1, uint32_t* first, 
   *count = static_cast<uint32_t>(std::min<uint64_t>(n, hi + kStripMargin) - *first);
 }
 
+void keepAlong(const StripLevel& s, uint32_t dims[3], std::vector<double>* data, uint32_t first, uint32_t count,
+               uint32_t k0, uint32_t k1, int threads) {
+  dims[s.axis] = count;
+  if (!s.split) return;
+  double* d = data->data();
+  analyzeAxis(dims, s.axis, d, threads);
+  // Local Mallat layout along the axis: lows (count + 1) / 2 lines, then
+  // highs; local line i of either part is the part's line first / 2 + i
+  // (first is even). The kept lines move down in place, plane by plane in
+  // increasing order: each comes from at or after its destination.
+  uint64_t line = 1, planes = 1;
+  for (int a = 0; a < s.axis; ++a) line *= dims[a];
+  for (int a = s.axis + 1; a < 3; ++a) planes *= dims[a];
+  const uint32_t local_lows = (count + 1) / 2, base = first / 2;
+  const uint32_t low_end = std::min(k1, s.lows), high_end = std::min(k1, s.highs);
+  std::vector<uint32_t> from;
+  for (uint32_t k = k0; k < low_end; ++k) from.push_back(k - base);
+  for (uint32_t k = k0; k < high_end; ++k) from.push_back(local_lows + k - base);
+  const uint64_t kept = from.size();
+  for (uint64_t p = 0; p < planes; ++p)
+    for (uint64_t i = 0; i < kept; ++i) {
+      const double* src = d + (p * count + from[i]) * line;
+      double* dst = d + (p * kept + i) * line;
+      if (src != dst) std::copy(src, src + line, dst);
+    }
+  dims[s.axis] = static_cast<uint32_t>(kept);
+  data->resize(kept * line * planes);
+}
+
+void analyzeBelow(const GridPlan& plan, int level, int axis, const uint32_t dims[3], double* data, int threads) {
+  for (int a = axis - 1; a >= 0; --a)
+    if (plan.axis[a].levels >= level) analyzeAxis(dims, a, data, threads);
+}
+
 void analyzeStrip(const GridPlan& plan, const StripLevel& s, std::vector<double>* rows, uint32_t first,
                   uint32_t count, uint32_t k0, uint32_t k1, int threads) {
-  const uint64_t row = s.rowSize();
   uint32_t dims[3] = {s.box[0], s.box[1], s.box[2]};
-  double* data = rows->data();
-  uint32_t kept = count;
-  if (s.split) {
-    dims[s.axis] = count;
-    analyzeAxis(dims, s.axis, data, threads);
-    // Strip-local Mallat layout: lows (count + 1) / 2 rows, then highs; local
-    // row i of either part is the part's row first / 2 + i (first is even).
-    // The kept rows move down in place: each comes from at or after its
-    // destination, and rows are moved in increasing order.
-    const uint32_t local_lows = (count + 1) / 2, base = first / 2;
-    const uint32_t low_end = std::min(k1, s.lows), high_end = std::min(k1, s.highs);
-    kept = 0;
-    auto keep = [&](uint64_t from) {
-      if (from != kept) std::copy(data + from * row, data + (from + 1) * row, data + uint64_t{kept} * row);
-      ++kept;
-    };
-    for (uint32_t k = k0; k < low_end; ++k) keep(k - base);
-    for (uint32_t k = k0; k < high_end; ++k) keep(local_lows + k - base);
-  }
-  rows->resize(uint64_t{kept} * row);
-  dims[s.axis] = kept;
-  for (int a = s.axis - 1; a >= 0; --a)
-    if (plan.axis[a].levels >= s.level) analyzeAxis(dims, a, rows->data(), threads);
+  keepAlong(s, dims, rows, first, count, k0, k1, threads);
+  analyzeBelow(plan, s.level, s.axis, dims, rows->data(), threads);
 }
 
 }  // namespace mrsv::wavelet

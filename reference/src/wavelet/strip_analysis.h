@@ -28,11 +28,24 @@ struct StripLevel {
   uint64_t rowSize() const;
 };
 
-StripLevel stripLevel(const GridPlan& plan, int level);
+// Along `axis`, or by default the slowest axis num_dims - 1.
+StripLevel stripLevel(const GridPlan& plan, int level, int axis = -1);
 
 // The input rows [*first, *first + *count) that outputs [k0, k1) of the low
 // and of the high part need.
 void stripInput(const StripLevel& s, uint32_t k0, uint32_t k1, uint32_t* first, uint32_t* count);
+
+// The pass of one level along s.axis over an array of `dims` (x fastest)
+// whose lines along that axis are the level's [first, first + count): on
+// return `data` holds, along that axis, the low lines [k0, min(k1, lows))
+// then the high lines [k0, min(k1, highs)), and dims[s.axis] their count.
+// The other axes are untouched (a 3-D piece lifts z, then y, then x).
+void keepAlong(const StripLevel& s, uint32_t dims[3], std::vector<double>* data, uint32_t first, uint32_t count,
+               uint32_t k0, uint32_t k1, int threads = 1);
+
+// The passes of one level along every axis below `axis` that the level
+// splits, in analyze()'s order (y, then x).
+void analyzeBelow(const GridPlan& plan, int level, int axis, const uint32_t dims[3], double* data, int threads = 1);
 
 // One level over a strip: `rows` holds input rows [first, first + count) as
 // stripInput() gave them, and on return the low rows [k0, min(k1, lows))
