@@ -246,6 +246,9 @@ if [ -f "$rainier" ]; then
   done
   "$mrsv" decode --region 400,300,656,556 "$out/rainier_cut.mrsv" "$out/rainier_pwindow.nrrd" 2>&1 |
     sed "s|$out/|demo/out/|; s/^/  /"
+  echo "  precincts out of core (D91): a strip of precincts in memory at a time, the analysis level by level"
+  "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --precinct 256 --max-error 1 --out-of-core \
+    "$out/rainier.raw" "$out/rainier_pooc.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
 else
   echo "  (skipped: needs ../shared/data)"
 fi

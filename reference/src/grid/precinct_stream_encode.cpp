@@ -356,8 +356,45 @@ Error PrecinctStreamEncoder::readRows(uint32_t first, uint32_t count, std::vecto
   return {};
 }
 
-// Pass 1: the valid samples' range and count, which fill tiles hold voids,
-// and the mask's blocks.
+// The grid as boxes of whole precincts, near-square and of at most 2^19
+// samples (so that a box's buffers stay small whatever the grid's width),
+// in raster order of boxes; the same boxes whatever the thread count.
+struct PrecinctBox {
+  uint32_t first[3], last[3];  // precinct indices, inclusive
+  uint32_t origin[3], size[3]; // samples
+};
+
+std::vector<PrecinctBox> precinctBoxes(int num_dims, const uint32_t grid[3], int precinct_log2) {
+  const uint32_t edge = 1u << precinct_log2;
+  uint32_t per_box[3] = {1, 1, 1}, count[3] = {1, 1, 1};
+  constexpr uint64_t kBoxSamples = uint64_t{1} << 19;
+  for (uint64_t samples = uint64_t{1} << (precinct_log2 * num_dims); 2 * samples <= kBoxSamples;) {
+    int a = 0;
+    for (int b = 1; b < num_dims; ++b)
+      if (per_box[b] < per_box[a]) a = b;
+    per_box[a] *= 2;
+    samples *= 2;
+  }
+  for (int a = 0; a < num_dims; ++a) count[a] = (grid[a] + edge - 1) / edge;
+  std::vector<PrecinctBox> boxes;
+  for (uint32_t k = 0; k < count[2]; k += per_box[2])
+    for (uint32_t j = 0; j < count[1]; j += per_box[1])
+      for (uint32_t i = 0; i < count[0]; i += per_box[0]) {
+        PrecinctBox b;
+        const uint32_t at[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          b.first[a] = at[a];
+          b.last[a] = std::min(at[a] + per_box[a], count[a]) - 1;
+          b.origin[a] = at[a] * edge;
+          b.size[a] = a < num_dims ? std::min((b.last[a] + 1) * edge, grid[a]) - b.origin[a] : 1;
+        }
+        boxes.push_back(b);
+      }
+  return boxes;
+}
+
+// Pass 1, a box of precincts at a time: the valid samples' range and count,
+// which fill tiles hold voids, and the mask's blocks.
 Error PrecinctStreamEncoder::scan() {
   const uint32_t edge = stripRows();
   for (int a = 0; a < 3; ++a) fill_count_[a] = (size_[a] + edge - 1) / edge;
@@ -365,15 +402,19 @@ Error PrecinctStreamEncoder::scan() {
   fill_at_.assign(tile_has_void_.size(), UINT64_MAX);
   fill_count_of_.assign(tile_has_void_.size(), 0);
   if (Error e = fills_.open(); !e.ok()) return e;
-  const uint32_t rows_total = slowSize();
-  std::vector<uint8_t> bytes;
-  std::vector<int64_t> mask;
+  const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
+  const int full_resolution[3] = {0, 0, 0};
+  BlockCoder coder(setup_.header, &blocks_, run_.threads);
+  std::vector<uint8_t> bytes, mask;
   bool first_valid = true;
-  const int s = num_dims_ - 1;
-  for (uint32_t row = 0, strip = 0; row < rows_total; row += edge, ++strip) {
-    const uint32_t count = std::min(edge, rows_total - row);
-    if (Error e = readRows(row, count, &bytes); !e.ok()) return e;
-    const uint64_t n = rowSamples() * count;
+  const int threads = std::max(1, run_.threads);
+  const std::vector<PrecinctBox> boxes = precinctBoxes(num_dims_, size_, options_.precinct_log2);
+  for (size_t bi = 0; bi < boxes.size(); ++bi) {
+    const PrecinctBox& box = boxes[bi];
+    const uint64_t n = uint64_t{box.size[0]} * box.size[1] * box.size[2];
+    bytes.resize(n * bytes_);
+    std::string error;
+    if (!reader_.read(box.origin, box.size, bytes.data(), &error)) return ioFailure(error);
     mask.assign(n, 0);
     // The samples in parts, one per thread; the parts' figures combine the
     // same way whatever the count (min, max, sums, the first bad sample).
@@ -382,7 +423,6 @@ Error PrecinctStreamEncoder::scan() {
       uint64_t valid = 0, bad = UINT64_MAX;
       bool any_void = false;
     };
-    const int threads = std::max(1, run_.threads);
     std::vector<Part> parts(static_cast<size_t>(threads));
     parallelFor(parts.size(), threads, [&](uint64_t t) {
       Part& part = parts[t];
@@ -405,9 +445,13 @@ Error PrecinctStreamEncoder::scan() {
     });
     bool any_void = false;
     for (const Part& part : parts) {
-      if (part.bad != UINT64_MAX)
-        return invalid("samples", "sample " + std::to_string(rowSamples() * row + part.bad) +
+      if (part.bad != UINT64_MAX) {
+        const uint64_t i = part.bad;
+        const uint64_t x = box.origin[0] + i % box.size[0], y = box.origin[1] + (i / box.size[0]) % box.size[1],
+                       z = box.origin[2] + i / (uint64_t{box.size[0]} * box.size[1]);
+        return invalid("samples", "sample " + std::to_string((z * size_[1] + y) * size_[0] + x) +
                                       " is NaN or infinite; mark such samples with --nodata");
+      }
       any_void |= part.any_void;
       if (!part.valid) continue;
       c_min_ = first_valid ? part.lo : std::min(c_min_, part.lo);
@@ -415,33 +459,25 @@ Error PrecinctStreamEncoder::scan() {
       first_valid = false;
       valid_count_ += part.valid;
     }
-    // The fill tiles of the strip that hold voids.
-    if (any_void)
-      for (uint64_t i = 0; i < n; ++i) {
-        if (!mask[i]) continue;
-        uint32_t pos[3] = {0, 0, 0};
-        uint64_t rest = i;
-        for (int a = 0; a < num_dims_; ++a) {
-          pos[a] = static_cast<uint32_t>(rest % (a == s ? count : size_[a]));
-          rest /= (a == s ? count : size_[a]);
-        }
-        pos[s] += row;
-        tile_has_void_[pos[0] / edge + fill_count_[0] * (pos[1] / edge + uint64_t{fill_count_[1]} * (pos[2] / edge))] = 1;
-      }
     if (!any_void) continue;
-    ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
-    ArrayBox strip_box = array;
-    strip_box.size[s] = count;
-    const int full_resolution[3] = {0, 0, 0};
-    BlockCoder coder(setup_.header, &blocks_, run_.threads);
-    if (Error e = coder.codeRow(array, full_resolution, strip, strip_box, nullptr, &mask_,
-                                [&](const ArrayBlock& local, int64_t* q) {
-                                  copyBlockOut(mask.data(), strip_box.size[0],
-                                               size_t{strip_box.size[0]} * strip_box.size[1], local, q);
-                                  return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
-                                });
-        !e.ok())
-      return e;
+    // The fill tiles (precincts) of the box that hold voids, and the mask's blocks.
+    for (uint64_t i = 0; i < n; ++i) {
+      if (!mask[i]) continue;
+      const uint64_t x = box.origin[0] + i % box.size[0], y = box.origin[1] + (i / box.size[0]) % box.size[1],
+                     z = box.origin[2] + i / (uint64_t{box.size[0]} * box.size[1]);
+      tile_has_void_[x / edge + fill_count_[0] * (y / edge + uint64_t{fill_count_[1]} * (z / edge))] = 1;
+    }
+    const ArrayBox source{{box.size[0], box.size[1], box.size[2]}, num_dims_};
+    BlockCoder::Coded coded =
+        coder.encode(array, full_resolution, box.first, box.last, box.origin, source, nullptr, run_.threads,
+                     [&](const ArrayBlock& local, int64_t* q) {
+                       std::vector<uint8_t> m(local.box.count());
+                       copyBlockOut(mask.data(), source.size[0], size_t{source.size[0]} * source.size[1], local, m.data());
+                       std::copy(m.begin(), m.end(), q);
+                       return std::any_of(m.begin(), m.end(), [](uint8_t v) { return v != 0; });
+                     });
+    if (Error e = coder.store(array, full_resolution, coded, &mask_); !e.ok()) return e;
+    progress(0.05 * static_cast<double>(bi + 1) / static_cast<double>(boxes.size()));
   }
   return {};
 }
@@ -834,28 +870,14 @@ Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) 
 // blocks. A box holds about 2^19 samples, so that the region decoder's
 // windows stay small whatever the grid's width.
 Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally) {
-  const uint32_t edge = stripRows();
-  const int s = num_dims_ - 1;
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_, run_.threads);
   const int threads = std::max(1, run_.threads);
-  // Precincts per box along each axis, doubled on the axis with the fewest
-  // while the box stays within 2^19 samples: near-square boxes re-decode the
-  // fewest blocks around them (the synthesis reaches past a box's edges).
-  // The same boxes whatever the thread count, so that the error sums (and
-  // the meta chunk) are the same bits.
-  uint32_t per_box[3] = {1, 1, 1};
-  constexpr uint64_t box_samples = uint64_t{1} << 19;
-  for (uint64_t samples = uint64_t{1} << (options_.precinct_log2 * num_dims_); 2 * samples <= box_samples;) {
-    int a = 0;
-    for (int b = 1; b < num_dims_; ++b)
-      if (per_box[b] < per_box[a]) a = b;
-    per_box[a] *= 2;
-    samples *= 2;
-  }
-  uint32_t count[3];
-  for (int a = 0; a < 3; ++a) count[a] = a < num_dims_ ? (size_[a] + edge - 1) / edge : 1;
+  // Near-square boxes re-decode the fewest blocks around them (the synthesis
+  // reaches past a box's edges); the same boxes whatever the thread count,
+  // so that the error sums (and the meta chunk) are the same bits.
+  const std::vector<PrecinctBox> boxes = precinctBoxes(num_dims_, size_, options_.precinct_log2);
   // What decoding one box gave.
   struct BoxResult {
     uint32_t first[3], last[3], origin[3], box[3];
@@ -922,32 +944,26 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
                                 return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
                               });
   };
-  for (uint32_t k = 0; k < count[s]; k += per_box[s]) {
-    std::vector<BoxResult> boxes;
-    for (uint32_t j = 0; j < (num_dims_ == 3 ? count[1] : 1); j += per_box[1])
-      for (uint32_t i = 0; i < count[0]; i += per_box[0]) {
-        BoxResult b;
-        b.first[0] = i;
-        b.first[1] = j;
-        b.first[2] = 0;
-        b.first[s] = k;
-        for (int a = 0; a < 3; ++a) {
-          b.last[a] = std::min(b.first[a] + per_box[a], count[a]) - 1;
-          b.origin[a] = b.first[a] * edge;
-          b.box[a] = a < num_dims_ ? std::min((b.last[a] + 1) * edge, size_[a]) - b.origin[a] : 1;
-        }
-        boxes.push_back(std::move(b));
-      }
-    parallelFor(boxes.size(), threads, [&](uint64_t i) { decodeBox(boxes[i]); });
-    // In box order, whatever the thread count.
-    for (BoxResult& b : boxes) {
+  // A batch of boxes at a time, decoded in parallel, added in box order.
+  const size_t batch = 2 * static_cast<size_t>(threads);
+  for (size_t at = 0; at < boxes.size(); at += batch) {
+    std::vector<BoxResult> results(std::min(batch, boxes.size() - at));
+    for (size_t i = 0; i < results.size(); ++i) {
+      const PrecinctBox& pb = boxes[at + i];
+      std::copy(pb.first, pb.first + 3, results[i].first);
+      std::copy(pb.last, pb.last + 3, results[i].last);
+      std::copy(pb.origin, pb.origin + 3, results[i].origin);
+      std::copy(pb.size, pb.size + 3, results[i].box);
+    }
+    parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
+    for (BoxResult& b : results) {
       if (!b.error.ok()) return b.error;
       tally->sse += b.sse;
       tally->max_abs = std::max(tally->max_abs, b.max_abs);
       if (residual_step)
         if (Error e = coder.store(array, full_resolution, b.residual, &residual_); !e.ok()) return e;
     }
-    progress(0.7 + 0.3 * std::min(k + per_box[s], count[s]) / static_cast<double>(count[s]));
+    progress(0.7 + 0.3 * static_cast<double>(at + results.size()) / static_cast<double>(boxes.size()));
   }
   return {};
 }
