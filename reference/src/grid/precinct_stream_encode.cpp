@@ -198,21 +198,6 @@ class BlockCoder {
     return {};
   }
 
-  // Every block of block row `row` along the slowest axis, from a strip
-  // holding that row whole.
-  template <typename Quantize>
-  Error codeRow(const ArrayBox& array_box, const int resolution[3], uint32_t row, const ArrayBox& strip,
-                const uint8_t* skip, SpilledArray* out, const Quantize& quantize) {
-    uint32_t edge[3], count[3];
-    grid(array_box, resolution, edge, count);
-    const int s = array_box.num_dims - 1;
-    uint32_t first[3] = {0, 0, 0}, last[3] = {count[0] - 1, count[1] - 1, count[2] - 1}, origin[3] = {0, 0, 0};
-    first[s] = last[s] = row;
-    origin[s] = row * edge[s];
-    return store(array_box, resolution, encode(array_box, resolution, first, last, origin, strip, skip, threads_, quantize),
-                 out);
-  }
-
  private:
   const WaveletHeader& wh_;
   Spill* spill_;
@@ -295,15 +280,8 @@ class PrecinctStreamEncoder {
     std::vector<uint8_t> coarsest;      // the coarsest band's chunk payload
     uint64_t bytes = 0;                 // framed size of the band chunks
   };
-  // The grid's strips along its slowest axis: 2^P sample rows each.
+  // A precinct's edge at full resolution: 2^P samples.
   uint32_t stripRows() const { return 1u << options_.precinct_log2; }
-  uint32_t slowSize() const { return size_[num_dims_ - 1]; }
-  uint64_t rowSamples() const {
-    uint64_t n = 1;
-    for (int a = 0; a + 1 < num_dims_; ++a) n *= size_[a];
-    return n;
-  }
-  Error readRows(uint32_t first, uint32_t count, std::vector<uint8_t>* bytes);
   Error scan();
   // A box of a level's input (levelInput()).
   struct Piece {
@@ -345,16 +323,6 @@ class PrecinctStreamEncoder {
   std::vector<double> coarsest_;        // the coarsest band's coefficients
   std::unique_ptr<Spill> level_low_;    // the low-pass part of the level just analysed
 };
-
-Error PrecinctStreamEncoder::readRows(uint32_t first, uint32_t count, std::vector<uint8_t>* bytes) {
-  uint32_t origin[3] = {0, 0, 0}, box[3] = {size_[0], size_[1], size_[2]};
-  origin[num_dims_ - 1] = first;
-  box[num_dims_ - 1] = count;
-  bytes->resize(rowSamples() * count * bytes_);
-  std::string error;
-  if (!reader_.read(origin, box, bytes->data(), &error)) return ioFailure(error);
-  return {};
-}
 
 // The grid as boxes of whole precincts, near-square and of at most 2^19
 // samples (so that a box's buffers stay small whatever the grid's width),
