@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <unistd.h>
 
@@ -288,7 +289,8 @@ class PrecinctStreamEncoder {
     uint32_t lo[3] = {0, 0, 0}, n[3] = {1, 1, 1};
   };
   Error levelInput(int level, const Piece& piece, std::vector<double>* out);
-  Error fillVoids(const uint32_t origin[3], const uint32_t box[3], double* x);
+  Error fillVoids(const uint32_t origin[3], const uint32_t box[3],
+                  const std::function<double*(uint32_t, uint32_t)>& line);
   void refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid, std::vector<double>* tile) const;
   Error analyzeLevel(int level, BandPass* pass);
   Error writeBands(const BandPass& pass, ByteSink* stream);
@@ -483,10 +485,16 @@ Error PrecinctStreamEncoder::levelInput(int level, const Piece& piece, std::vect
   std::vector<uint8_t> bytes(uint64_t{box[0]} * box[1] * box[2] * bytes_);
   std::string error;
   if (!reader_.read(origin, box, bytes.data(), &error)) return ioFailure(error);
-  std::vector<double> x(uint64_t{box[0]} * box[1] * box[2]);
+  // Each sample line is converted once, into the first of the piece's lines
+  // that stands for it (its owner); voids are filled there; the other lines
+  // (padding) are copies.
+  auto owner = [&](uint32_t g, int a) { return g >= piece.lo[a] ? g - piece.lo[a] : 0; };
+  auto lineOf = [&](uint32_t y, uint32_t z) { return out->data() + (uint64_t{z} * piece.n[1] + y) * px; };
   parallelFor(uint64_t{box[1]} * box[2], run_.threads, [&](uint64_t line) {
+    const uint32_t gy = origin[1] + static_cast<uint32_t>(line % box[1]);
+    const uint32_t gz = origin[2] + static_cast<uint32_t>(line / box[1]);
     const uint8_t* p = bytes.data() + line * box[0] * bytes_;
-    double* dst = x.data() + line * box[0];
+    double* dst = lineOf(owner(gy, 1), owner(gz, 2));
     for (uint32_t i = 0; i < box[0]; ++i, p += bytes_) {
       const bool valid = !header_.hasNodata() || std::memcmp(p, &header_.nodata_bits, bytes_) != 0;
       dst[i] = valid ? (sampleValue(p, header_.sample_type) - c_min_) / setup_.scale : 0.0;
@@ -494,22 +502,26 @@ Error PrecinctStreamEncoder::levelInput(int level, const Piece& piece, std::vect
   });
   bytes = {};
   if (valid_count_ < header_.sampleCount())
-    if (Error e = fillVoids(origin, box, x.data()); !e.ok()) return e;
+    if (Error e = fillVoids(origin, box, [&](uint32_t gy, uint32_t gz) { return lineOf(owner(gy, 1), owner(gz, 2)); });
+        !e.ok())
+      return e;
   for (uint32_t z = 0; z < piece.n[2]; ++z)
     for (uint32_t y = 0; y < piece.n[1]; ++y) {
-      const uint32_t sz = std::min(piece.lo[2] + z, n_z - 1) - origin[2], sy = std::min(piece.lo[1] + y, n_y - 1) - origin[1];
-      const double* src = x.data() + (uint64_t{sz} * box[1] + sy) * box[0];
-      double* dst = out->data() + (uint64_t{z} * piece.n[1] + y) * px;
-      std::copy(src, src + size_[0], dst);
-      std::fill(dst + size_[0], dst + px, src[size_[0] - 1]);
+      const uint32_t gz = std::min(piece.lo[2] + z, n_z - 1), gy = std::min(piece.lo[1] + y, n_y - 1);
+      double* dst = lineOf(y, z);
+      const double* src = lineOf(owner(gy, 1), owner(gz, 2));
+      if (src != dst) std::copy(src, src + size_[0], dst);
+      std::fill(dst + size_[0], dst + px, dst[size_[0] - 1]);
     }
   return {};
 }
 
-// The voids of the sample box at `origin` (values in `x`, x fastest over
-// `box`) filled by pull-push within their fill tile (a precinct at full
-// resolution), so that every piece reading a tile fills it alike.
-Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t box[3], double* x) {
+// The voids of the sample box at `origin` filled by pull-push within their
+// fill tile (a precinct at full resolution), so that every piece reading a
+// tile fills it alike. `line(y, z)`: where sample line (y, z) of the box
+// holds its values (x from 0).
+Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t box[3],
+                                       const std::function<double*(uint32_t, uint32_t)>& line) {
   const uint32_t edge = stripRows();
   std::vector<uint8_t> bytes;
   uint32_t t_lo[3], t_hi[3];
@@ -565,7 +577,7 @@ Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t 
           for (uint32_t j = 0; j < t_box[1]; ++j) {
             const uint32_t gy = t_origin[1] + j, gz = t_origin[2] + k;
             if (gy < origin[1] || gy >= origin[1] + box[1] || gz < origin[2] || gz >= origin[2] + box[2]) continue;
-            double* dst = x + ((uint64_t{gz - origin[2]} * box[1]) + (gy - origin[1])) * box[0] + t_origin[0];
+            double* dst = line(gy, gz) + t_origin[0];
             const size_t from = (size_t{k} * t_box[1] + j) * t_box[0];
             for (uint32_t i = 0; i < t_box[0]; ++i)
               if (!valid[from + i]) dst[i] = tile[from + i];
@@ -620,7 +632,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   for (int a = 0; a < 3; ++a) low_box[a] = plan.axis[a].size(level);
   if (top) coarsest_.assign(uint64_t{low_box[0]} * low_box[1] * low_box[2], 0.0);
   const uint32_t px = along_s.box[0];
-  std::vector<double> in, part;
+  std::vector<double> in;
   BlockCoder coder(wh, pass->blocks.get(), run_.threads);
   const uint32_t strips_s = (along_s.lows + edge[s] - 1) / edge[s];
   const uint32_t strips_y = cut_y ? (along_y.lows + edge[1] - 1) / edge[1] : 1;
@@ -646,24 +658,27 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
       uint32_t lows[3] = {0, 0, 0};
       lows[s] = std::min(k1, along_s.lows) - k0;
       if (cut_y) lows[1] = std::min(j1, along_y.lows) - j0;
+      // Every block of every band of the level in this piece, coded at once
+      // (one barrier per piece), each read from the piece where its band lies.
+      struct Task {
+        size_t band;
+        uint32_t from[3];  // the band's part of the piece starts here in the piece
+        ArrayBlock local;  // the block, origin within the band's part
+        uint64_t index;    // in the band's block grid
+      };
+      std::vector<Task> tasks;
+      std::vector<BandQuantizer> quantizers(setup_.bands.size());
       for (size_t bi = 0; bi < setup_.bands.size(); ++bi) {
         const Band& band = setup_.bands[bi];
         if (band.level != level && !(band.mask == 0 && top)) continue;
-        // The band's part of this piece, contiguous over `part_box`.
-        uint32_t from[3] = {band.offset[0], 0, 0};
-        ArrayBox part_box{{band.size[0], 1, 1}, num_dims_};
+        // The band's part of this piece: where it starts, how large.
+        uint32_t from[3] = {band.offset[0], 0, 0}, part[3] = {band.size[0], 1, 1};
         for (int a = 1; a < num_dims_; ++a) {
           const bool high = (band.mask >> a) & 1;
           from[a] = high ? lows[a] : 0;
-          part_box.size[a] = high ? dims[a] - lows[a] : lows[a];
+          part[a] = high ? dims[a] - lows[a] : lows[a];
         }
-        if (part_box.count() == 0) continue;
-        part.resize(part_box.count());
-        for (uint32_t z = 0; z < part_box.size[2]; ++z)
-          for (uint32_t y = 0; y < part_box.size[1]; ++y) {
-            const double* src = in.data() + ((uint64_t{from[2] + z} * dims[1]) + from[1] + y) * dims[0] + from[0];
-            std::copy(src, src + band.size[0], part.data() + (uint64_t{z} * part_box.size[1] + y) * band.size[0]);
-          }
+        if (uint64_t{part[0]} * part[1] * part[2] == 0) continue;
         // The piece's first position in the band, and its block indices.
         uint32_t at[3] = {0, 0, 0}, index[3] = {0, 0, 0};
         at[s] = k0;
@@ -673,31 +688,54 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
           index[1] = j;
         }
         if (band.mask == 0) {  // the coarsest band: kept whole
-          for (uint32_t z = 0; z < part_box.size[2]; ++z)
-            for (uint32_t y = 0; y < part_box.size[1]; ++y)
-              std::copy(part.data() + (uint64_t{z} * part_box.size[1] + y) * band.size[0],
-                        part.data() + (uint64_t{z} * part_box.size[1] + y + 1) * band.size[0],
-                        coarsest_.data() + ((uint64_t{at[2] + z} * band.size[1]) + at[1] + y) * band.size[0]);
+          for (uint32_t z = 0; z < part[2]; ++z)
+            for (uint32_t y = 0; y < part[1]; ++y) {
+              const double* src = in.data() + ((uint64_t{from[2] + z} * dims[1]) + from[1] + y) * dims[0] + from[0];
+              std::copy(src, src + part[0], coarsest_.data() + ((uint64_t{at[2] + z} * band.size[1]) + at[1] + y) * band.size[0]);
+            }
           continue;
         }
-        const BandQuantizer quantizer = bandQuantizer(setup_, bi, delta, integer_);
+        quantizers[bi] = bandQuantizer(setup_, bi, delta, integer_);
         const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
         uint32_t block_edge[3], block_count[3];
         coder.grid(band_box, resolution, block_edge, block_count);
-        uint32_t last[3] = {block_count[0] - 1, index[1], index[2]};
-        std::atomic<bool> nonzero{false};
-        BlockCoder::Coded coded =
-            coder.encode(band_box, resolution, index, last, at, part_box, nullptr, run_.threads,
-                         [&](const ArrayBlock& local, int64_t* q) {
-                           std::vector<double> c(local.box.count());
-                           copyBlockOut(part.data(), part_box.size[0], size_t{part_box.size[0]} * part_box.size[1],
-                                        local, c.data());
-                           const bool some = quantizeArray(quantizer, c.data(), local.box, q);
-                           if (some) nonzero = true;
-                           return some;
-                         });
-        if (Error e = coder.store(band_box, resolution, coded, &pass->bands[bi]); !e.ok()) return e;
-        if (nonzero) pass->any[bi] = true;
+        if (pass->bands[bi].length.empty()) {
+          const uint64_t n = uint64_t{block_count[0]} * block_count[1] * block_count[2];
+          pass->bands[bi].length.assign(n, 0);
+          pass->bands[bi].offset.assign(n, 0);
+        }
+        for (uint32_t i = 0; i < block_count[0]; ++i) {
+          const uint32_t b_index[3] = {i, index[1], index[2]};
+          Task t{bi, {from[0], from[1], from[2]}, blockAt(band_box, block_edge, b_index), 0};
+          for (int a = 0; a < 3; ++a) t.local.origin[a] -= at[a];
+          t.index = i + uint64_t{block_count[0]} * (index[1] + uint64_t{block_count[1]} * index[2]);
+          tasks.push_back(t);
+        }
+      }
+      std::vector<std::vector<uint8_t>> coded(tasks.size());
+      parallelFor(tasks.size(), run_.threads, [&](uint64_t ti) {
+        const Task& t = tasks[ti];
+        const ArrayBox& box = t.local.box;
+        std::vector<double> c(box.count());
+        for (uint32_t z = 0; z < box.size[2]; ++z)
+          for (uint32_t y = 0; y < box.size[1]; ++y) {
+            const double* src = in.data() +
+                                ((uint64_t{t.from[2] + t.local.origin[2] + z} * dims[1]) + t.from[1] + t.local.origin[1] + y) *
+                                    dims[0] +
+                                t.from[0] + t.local.origin[0];
+            std::copy(src, src + box.size[0], c.data() + (uint64_t{z} * box.size[1] + y) * box.size[0]);
+          }
+        std::vector<int64_t> q(box.count());
+        if (!quantizeArray(quantizers[t.band], c.data(), box, q.data())) return;
+        encodeArray(wh.entropy_mode, q.data(), box, ArrayPrediction::kNone, nullptr, &coded[ti]);
+      });
+      for (size_t ti = 0; ti < tasks.size(); ++ti) {
+        if (coded[ti].empty()) continue;
+        SpilledArray& band = pass->bands[tasks[ti].band];
+        band.length[tasks[ti].index] = static_cast<uint32_t>(coded[ti].size());
+        if (Error e = pass->blocks->append(coded[ti].data(), coded[ti].size(), &band.offset[tasks[ti].index]); !e.ok())
+          return e;
+        pass->any[tasks[ti].band] = true;
       }
       // The low-pass lines (every split axis low) for the next level, at
       // their place in its input.
