@@ -588,8 +588,8 @@ Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t 
 
 // The in-memory encoder refines its pull-push fill over the whole grid
 // (refineVoidFill); a fill tile is refined over a plan of its own. Measured
-// on Rainier at step 8: 283,127 bytes with pull-push alone, against 274,998
-// in memory.
+// on Rainier (SRTM voids) at step 8: 283,127 bytes with pull-push alone,
+// 275,234 refined, 274,998 in memory.
 void PrecinctStreamEncoder::refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid,
                                            std::vector<double>* tile) const {
   GridHeader th = header_;
