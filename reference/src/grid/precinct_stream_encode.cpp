@@ -375,79 +375,84 @@ Error PrecinctStreamEncoder::scan() {
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_, run_.threads);
-  std::vector<uint8_t> bytes, mask;
   bool first_valid = true;
   const int threads = std::max(1, run_.threads);
   const std::vector<PrecinctBox> boxes = precinctBoxes(num_dims_, size_, options_.precinct_log2);
-  for (size_t bi = 0; bi < boxes.size(); ++bi) {
-    const PrecinctBox& box = boxes[bi];
+  // What reading one box gave: its figures and its voids.
+  struct BoxScan {
+    double lo = 0, hi = 0;
+    uint64_t valid = 0, bad = UINT64_MAX;
+    std::vector<uint8_t> mask;  // 1 at a void; empty when the box has none
+    Error error;
+  };
+  auto scanBox = [&](const PrecinctBox& box, BoxScan* r) {
     const uint64_t n = uint64_t{box.size[0]} * box.size[1] * box.size[2];
-    bytes.resize(n * bytes_);
+    std::vector<uint8_t> bytes(n * bytes_);
     std::string error;
-    if (!reader_.read(box.origin, box.size, bytes.data(), &error)) return ioFailure(error);
-    mask.assign(n, 0);
-    // The samples in parts, one per thread; the parts' figures combine the
-    // same way whatever the count (min, max, sums, the first bad sample).
-    struct Part {
-      double lo = 0, hi = 0;
-      uint64_t valid = 0, bad = UINT64_MAX;
-      bool any_void = false;
-    };
-    std::vector<Part> parts(static_cast<size_t>(threads));
-    parallelFor(parts.size(), threads, [&](uint64_t t) {
-      Part& part = parts[t];
-      for (uint64_t i = n * t / parts.size(), end = n * (t + 1) / parts.size(); i < end; ++i) {
-        const uint8_t* p = bytes.data() + i * bytes_;
-        if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes_) == 0) {
-          mask[i] = 1;
-          part.any_void = true;
-          continue;
-        }
-        const double v = sampleValue(p, header_.sample_type);
-        if (!std::isfinite(v)) {
-          part.bad = std::min(part.bad, i);
-          continue;
-        }
-        part.lo = part.valid ? std::min(part.lo, v) : v;
-        part.hi = part.valid ? std::max(part.hi, v) : v;
-        ++part.valid;
+    if (!reader_.read(box.origin, box.size, bytes.data(), &error)) {
+      r->error = ioFailure(error);
+      return;
+    }
+    for (uint64_t i = 0; i < n; ++i) {
+      const uint8_t* p = bytes.data() + i * bytes_;
+      if (header_.hasNodata() && std::memcmp(p, &header_.nodata_bits, bytes_) == 0) {
+        if (r->mask.empty()) r->mask.assign(n, 0);
+        r->mask[i] = 1;
+        continue;
       }
-    });
-    bool any_void = false;
-    for (const Part& part : parts) {
-      if (part.bad != UINT64_MAX) {
-        const uint64_t i = part.bad;
-        const uint64_t x = box.origin[0] + i % box.size[0], y = box.origin[1] + (i / box.size[0]) % box.size[1],
-                       z = box.origin[2] + i / (uint64_t{box.size[0]} * box.size[1]);
+      const double v = sampleValue(p, header_.sample_type);
+      if (!std::isfinite(v)) {
+        r->bad = std::min(r->bad, i);
+        continue;
+      }
+      r->lo = r->valid ? std::min(r->lo, v) : v;
+      r->hi = r->valid ? std::max(r->hi, v) : v;
+      ++r->valid;
+    }
+  };
+  // A batch of boxes read at once, one per thread; their figures combine in
+  // box order (min, max, sums, the first bad sample), whatever the count.
+  for (size_t at = 0; at < boxes.size(); at += static_cast<size_t>(threads)) {
+    std::vector<BoxScan> scans(std::min<size_t>(static_cast<size_t>(threads), boxes.size() - at));
+    parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[at + i], &scans[i]); });
+    for (size_t i = 0; i < scans.size(); ++i) {
+      const PrecinctBox& box = boxes[at + i];
+      BoxScan& r = scans[i];
+      if (!r.error.ok()) return r.error;
+      if (r.bad != UINT64_MAX) {
+        const uint64_t x = box.origin[0] + r.bad % box.size[0], y = box.origin[1] + (r.bad / box.size[0]) % box.size[1],
+                       z = box.origin[2] + r.bad / (uint64_t{box.size[0]} * box.size[1]);
         return invalid("samples", "sample " + std::to_string((z * size_[1] + y) * size_[0] + x) +
                                       " is NaN or infinite; mark such samples with --nodata");
       }
-      any_void |= part.any_void;
-      if (!part.valid) continue;
-      c_min_ = first_valid ? part.lo : std::min(c_min_, part.lo);
-      c_max_ = first_valid ? part.hi : std::max(c_max_, part.hi);
-      first_valid = false;
-      valid_count_ += part.valid;
+      if (r.valid) {
+        c_min_ = first_valid ? r.lo : std::min(c_min_, r.lo);
+        c_max_ = first_valid ? r.hi : std::max(c_max_, r.hi);
+        first_valid = false;
+        valid_count_ += r.valid;
+      }
+      if (r.mask.empty()) continue;
+      // The fill tiles (precincts) of the box that hold voids, and the mask's blocks.
+      const std::vector<uint8_t>& mask = r.mask;
+      for (uint64_t p = 0; p < mask.size(); ++p) {
+        if (!mask[p]) continue;
+        const uint64_t x = box.origin[0] + p % box.size[0], y = box.origin[1] + (p / box.size[0]) % box.size[1],
+                       z = box.origin[2] + p / (uint64_t{box.size[0]} * box.size[1]);
+        tile_has_void_[x / edge + fill_count_[0] * (y / edge + uint64_t{fill_count_[1]} * (z / edge))] = 1;
+      }
+      const ArrayBox source{{box.size[0], box.size[1], box.size[2]}, num_dims_};
+      BlockCoder::Coded coded =
+          coder.encode(array, full_resolution, box.first, box.last, box.origin, source, nullptr, run_.threads,
+                       [&](const ArrayBlock& local, int64_t* q) {
+                         std::vector<uint8_t> m(local.box.count());
+                         copyBlockOut(mask.data(), source.size[0], size_t{source.size[0]} * source.size[1], local,
+                                      m.data());
+                         std::copy(m.begin(), m.end(), q);
+                         return std::any_of(m.begin(), m.end(), [](uint8_t v) { return v != 0; });
+                       });
+      if (Error e = coder.store(array, full_resolution, coded, &mask_); !e.ok()) return e;
     }
-    if (!any_void) continue;
-    // The fill tiles (precincts) of the box that hold voids, and the mask's blocks.
-    for (uint64_t i = 0; i < n; ++i) {
-      if (!mask[i]) continue;
-      const uint64_t x = box.origin[0] + i % box.size[0], y = box.origin[1] + (i / box.size[0]) % box.size[1],
-                     z = box.origin[2] + i / (uint64_t{box.size[0]} * box.size[1]);
-      tile_has_void_[x / edge + fill_count_[0] * (y / edge + uint64_t{fill_count_[1]} * (z / edge))] = 1;
-    }
-    const ArrayBox source{{box.size[0], box.size[1], box.size[2]}, num_dims_};
-    BlockCoder::Coded coded =
-        coder.encode(array, full_resolution, box.first, box.last, box.origin, source, nullptr, run_.threads,
-                     [&](const ArrayBlock& local, int64_t* q) {
-                       std::vector<uint8_t> m(local.box.count());
-                       copyBlockOut(mask.data(), source.size[0], size_t{source.size[0]} * source.size[1], local, m.data());
-                       std::copy(m.begin(), m.end(), q);
-                       return std::any_of(m.begin(), m.end(), [](uint8_t v) { return v != 0; });
-                     });
-    if (Error e = coder.store(array, full_resolution, coded, &mask_); !e.ok()) return e;
-    progress(0.05 * static_cast<double>(bi + 1) / static_cast<double>(boxes.size()));
+    progress(0.05 * static_cast<double>(at + scans.size()) / static_cast<double>(boxes.size()));
   }
   return {};
 }
