@@ -108,13 +108,27 @@ void encodeBlockedArray(const WaveletHeader& wh, int64_t* values, const ArrayBox
   }
 }
 
+std::vector<uint8_t> bandChunkHead(uint16_t index, uint64_t step) {
+  std::vector<uint8_t> head;
+  ByteWriter w(&head);
+  w.u16(index);
+  w.u8(0);  // band_flags
+  w.u8(0);
+  w.u64(step);
+  return head;
+}
+
 uint8_t encodeCoarsestBand(const WaveletHeader& wh, const std::vector<int64_t>& q, const ArrayBox& box,
-                           const int resolution[3], uint8_t choice, const uint8_t* fill_valid,
-                           std::vector<uint8_t>* out) {
+                           const int resolution[3], WaveletEncodeOptions::Prediction prediction,
+                           const uint8_t* fill_valid, std::vector<uint8_t>* out) {
+  using Prediction = WaveletEncodeOptions::Prediction;
+  if (wh.entropy_mode != kEntropyAdaptive) prediction = Prediction::kNeighbour;
+  const uint8_t choice = prediction == Prediction::kNeighbour  ? kBandPredictionNeighbour
+                         : prediction == Prediction::kWeighted ? kBandPredictionWeighted
+                                                               : 0;
   // Weighted prediction wins on terrains, the Lorenzo predictor on most CT volumes.
   uint8_t best_flags = 0;
   for (uint8_t code : {kBandPredictionNeighbour, kBandPredictionWeighted}) {
-    if (code == kBandPredictionWeighted && wh.entropy_mode != kEntropyAdaptive) continue;
     if (choice != 0 && choice != code) continue;
     std::vector<int64_t> values = q;
     std::vector<uint8_t> coded;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "grid/precincts.h"
 #include "grid/rd_quantizer.h"
 #include "wavelet/synthesis_fixed.h"
 
@@ -91,6 +92,23 @@ bool quantizeArray(const BandQuantizer& quantizer, const double* c, const ArrayB
     any |= m != 0;
   }
   if (quantizer.drop_lone && any) any = dropLoneUnits(c, quantizer.inv, box, q);
+  return any;
+}
+
+bool quantizeBlocked(const BandQuantizer& quantizer, const double* c, const ArrayBox& box, const int resolution[3],
+                     int precinct_log2, int64_t* q) {
+  if (precinct_log2 == 0) return quantizeArray(quantizer, c, box, q);
+  bool any = false;
+  std::vector<double> block_c;
+  std::vector<int64_t> block_q;
+  const size_t row = box.size[0], slice = row * box.size[1];
+  for (const ArrayBlock& b : arrayBlocks(box, resolution, precinct_log2)) {
+    block_c.resize(b.box.count());
+    block_q.resize(b.box.count());
+    copyBlockOut(c, row, slice, b, block_c.data());
+    any |= quantizeArray(quantizer, block_c.data(), b.box, block_q.data());
+    copyBlockIn(block_q.data(), b, q, row, slice);
+  }
   return any;
 }
 

@@ -32,4 +32,10 @@ BandQuantizer bandQuantizer(const WaveletSetup& setup, size_t index, double delt
 // whether any value is non-zero.
 bool quantizeArray(const BandQuantizer& quantizer, const double* c, const ArrayBox& box, int64_t* q);
 
+// quantizeArray() over each block of a band's array apart (spec 5.7.6: the
+// blocks of `box` at `resolution` for precincts of 2^precinct_log2; with 0,
+// the array whole).
+bool quantizeBlocked(const BandQuantizer& quantizer, const double* c, const ArrayBox& box, const int resolution[3],
+                     int precinct_log2, int64_t* q);
+
 }  // namespace mrsv

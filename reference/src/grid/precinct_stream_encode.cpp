@@ -1,12 +1,12 @@
 // spec: 5.9 (informative) out-of-core encoding of a wavelet-coded grid in
-// precincts (5.7.6, decision D91). The grid is read a strip of precincts at a
-// time along its slowest axis; the 9/7 analysis runs level by level, a strip
-// of each level at a time (wavelet/strip_analysis.h), each level's low-pass
-// part kept in a temporary file for the next; every block of every band is
-// quantised and coded as soon as its strip is analysed and kept in a
-// temporary file. The stream is then written band by band, decoded a strip at
-// a time by region (the residual layer and the error figures), and finished.
-// Memory: a few strips of the grid's width, not the grid.
+// precincts (5.7.6, decision D91). The grid is scanned a box of precincts at a
+// time; the 9/7 analysis runs level by level, a piece of each level at a time
+// (a row of blocks, in 3-D cut again along y: wavelet/strip_analysis.h), each
+// level's low-pass part kept in a temporary file for the next; every block of
+// every band is quantised and coded as soon as its piece is analysed and kept
+// in a temporary file. The stream is then written band by band, decoded a box
+// of precincts at a time by region (the residual layer and the error
+// figures), and finished. Memory: a few pieces and boxes, not the grid.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -118,6 +118,12 @@ class SpillSource : public ByteSource {
 struct SpilledArray {
   std::vector<uint32_t> length;
   std::vector<uint64_t> offset;
+  // Room for the `n` blocks of the array's grid, the first time.
+  void sized(uint64_t n) {
+    if (!length.empty()) return;
+    length.assign(n, 0);
+    offset.assign(n, 0);
+  }
   uint64_t codedSize() const {
     uint64_t n = 4 * uint64_t{length.size()};
     for (uint32_t l : length) n += l;
@@ -130,7 +136,7 @@ struct SpilledArray {
 // x fastest) that holds them, at `origin` in the array.
 class BlockCoder {
  public:
-  BlockCoder(const WaveletHeader& wh, Spill* spill, int threads) : wh_(wh), spill_(spill), threads_(threads) {}
+  BlockCoder(const WaveletHeader& wh, Spill* spill) : wh_(wh), spill_(spill) {}
 
   // The block grid of `array_box`.
   void grid(const ArrayBox& array_box, const int resolution[3], uint32_t edge[3], uint32_t count[3]) const {
@@ -182,13 +188,9 @@ class BlockCoder {
 
   // Appends coded blocks to the spill, in their order, and notes their places.
   Error store(const ArrayBox& array_box, const int resolution[3], const Coded& coded, SpilledArray* out) {
-    if (out->length.empty()) {
-      uint32_t edge[3], count[3];
-      grid(array_box, resolution, edge, count);
-      const uint64_t n = uint64_t{count[0]} * count[1] * count[2];
-      out->length.assign(n, 0);
-      out->offset.assign(n, 0);
-    }
+    uint32_t edge[3], count[3];
+    grid(array_box, resolution, edge, count);
+    out->sized(uint64_t{count[0]} * count[1] * count[2]);
     for (size_t i = 0; i < coded.index.size(); ++i) {
       if (coded.bytes[i].empty()) continue;
       out->length[coded.index[i]] = static_cast<uint32_t>(coded.bytes[i].size());
@@ -202,7 +204,6 @@ class BlockCoder {
  private:
   const WaveletHeader& wh_;
   Spill* spill_;
-  int threads_;
 };
 
 // Writes one chunk whose payload arrives in pieces, with its CRC-32C.
@@ -374,7 +375,7 @@ Error PrecinctStreamEncoder::scan() {
   if (Error e = fills_.open(); !e.ok()) return e;
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
-  BlockCoder coder(setup_.header, &blocks_, run_.threads);
+  BlockCoder coder(setup_.header, &blocks_);
   bool first_valid = true;
   const int threads = std::max(1, run_.threads);
   const std::vector<PrecinctBox> boxes = precinctBoxes(num_dims_, size_, options_.precinct_log2);
@@ -638,7 +639,6 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   if (top) coarsest_.assign(uint64_t{low_box[0]} * low_box[1] * low_box[2], 0.0);
   const uint32_t px = along_s.box[0];
   std::vector<double> in;
-  BlockCoder coder(wh, pass->blocks.get(), run_.threads);
   const uint32_t strips_s = (along_s.lows + edge[s] - 1) / edge[s];
   const uint32_t strips_y = cut_y ? (along_y.lows + edge[1] - 1) / edge[1] : 1;
   for (uint32_t k = 0; k < strips_s; ++k)
@@ -703,12 +703,8 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
         quantizers[bi] = bandQuantizer(setup_, bi, delta, integer_);
         const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
         uint32_t block_edge[3], block_count[3];
-        coder.grid(band_box, resolution, block_edge, block_count);
-        if (pass->bands[bi].length.empty()) {
-          const uint64_t n = uint64_t{block_count[0]} * block_count[1] * block_count[2];
-          pass->bands[bi].length.assign(n, 0);
-          pass->bands[bi].offset.assign(n, 0);
-        }
+        blockGrid(band_box, resolution, wh.precinct_log2, block_edge, block_count);
+        pass->bands[bi].sized(uint64_t{block_count[0]} * block_count[1] * block_count[2]);
         for (uint32_t i = 0; i < block_count[0]; ++i) {
           const uint32_t b_index[3] = {i, index[1], index[2]};
           Task t{bi, {from[0], from[1], from[2]}, blockAt(band_box, block_edge, b_index), 0};
@@ -785,28 +781,11 @@ Error PrecinctStreamEncoder::codeBands(double delta, BandPass* pass) {
   bandResolution(band.level, axis_levels, resolution);
   const BandQuantizer quantizer = bandQuantizer(setup_, 0, delta, integer_);
   std::vector<int64_t> q_all(box.count(), 0);
-  bool any = false;
-  std::vector<double> c;
-  std::vector<int64_t> q;
-  const size_t row = box.size[0], slice = row * box.size[1];
-  for (const ArrayBlock& b : arrayBlocks(box, resolution, wh.precinct_log2)) {
-    c.resize(b.box.count());
-    q.resize(b.box.count());
-    copyBlockOut(coarsest_.data(), row, slice, b, c.data());
-    any |= quantizeArray(quantizer, c.data(), b.box, q.data());
-    copyBlockIn(q.data(), b, q_all.data(), row, slice);
-  }
-  ByteWriter w(&pass->coarsest);
-  w.u16(0);
-  w.u8(0);  // band_flags, set below
-  w.u8(0);
-  w.u64(any ? quantizer.step : 0);
+  const bool any = quantizeBlocked(quantizer, coarsest_.data(), box, resolution, wh.precinct_log2, q_all.data());
+  pass->coarsest = bandChunkHead(0, any ? quantizer.step : 0);
   if (any) {
-    const uint8_t choice = options_.prediction == WaveletEncodeOptions::Prediction::kNeighbour ? kBandPredictionNeighbour
-                           : options_.prediction == WaveletEncodeOptions::Prediction::kWeighted ? kBandPredictionWeighted
-                                                                                               : 0;
     std::vector<uint8_t> coded;
-    pass->coarsest[2] = encodeCoarsestBand(wh, q_all, box, resolution, choice, nullptr, &coded);
+    pass->coarsest[2] = encodeCoarsestBand(wh, q_all, box, resolution, options_.prediction, nullptr, &coded);
     pass->coarsest.insert(pass->coarsest.end(), coded.begin(), coded.end());
   }
   constexpr uint64_t kFraming = kChunkHeaderSize + kChunkCrcSize, kBandHead = 12;
@@ -862,12 +841,8 @@ Error PrecinctStreamEncoder::searchRate(const GridHeader& h, const Metadata& met
 Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) {
   if (Error e = writeChunk(stream, kChunkBand, pass.coarsest); !e.ok()) return e;
   for (size_t bi = 1; bi < setup_.bands.size(); ++bi) {
-    std::vector<uint8_t> head;
-    ByteWriter w(&head);
-    w.u16(static_cast<uint16_t>(bi));
-    w.u8(0);  // band_flags
-    w.u8(0);
-    w.u64(pass.any[bi] ? bandQuantizer(setup_, bi, pass.delta, integer_).step : 0);
+    const std::vector<uint8_t> head =
+        bandChunkHead(static_cast<uint16_t>(bi), pass.any[bi] ? bandQuantizer(setup_, bi, pass.delta, integer_).step : 0);
     Error e = pass.any[bi] ? writeBlockedChunk(stream, kChunkBand, head, pass.bands[bi], pass.blocks.get())
                            : writeChunk(stream, kChunkBand, head);
     if (!e.ok()) return e;
@@ -883,7 +858,7 @@ Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) 
 Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally) {
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
-  BlockCoder coder(setup_.header, &blocks_, run_.threads);
+  BlockCoder coder(setup_.header, &blocks_);
   const int threads = std::max(1, run_.threads);
   // Near-square boxes re-decode the fewest blocks around them (the synthesis
   // reaches past a box's edges); the same boxes whatever the thread count,
@@ -891,18 +866,20 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
   const std::vector<PrecinctBox> boxes = precinctBoxes(num_dims_, size_, options_.precinct_log2);
   // What decoding one box gave.
   struct BoxResult {
-    uint32_t first[3], last[3], origin[3], box[3];
+    PrecinctBox at;
     double sse = 0, max_abs = 0;
     BlockCoder::Coded residual;
     Error error;
   };
   const int64_t rs = residual_step;
   auto decodeBox = [&](BoxResult& b) {
+    const uint32_t* origin = b.at.origin;
+    const uint32_t* size = b.at.size;
     SpillSource source(prefix);
     GridRegion region;
     for (int a = 0; a < 3; ++a) {
-      region.lo[a] = b.origin[a];
-      region.hi[a] = b.origin[a] + b.box[a];
+      region.lo[a] = origin[a];
+      region.hi[a] = origin[a] + size[a];
     }
     DecodedGrid decoded;
     if (Error e = decodeGridRegion(source, region, DecodeOptions{}, &decoded); !e.ok()) {
@@ -913,10 +890,10 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
       b.error = Error{Status::kInvalidArgument, 0, "verify", "internal error: the stream was not decoded by precinct"};
       return;
     }
-    const uint64_t n = uint64_t{b.box[0]} * b.box[1] * b.box[2];
+    const uint64_t n = uint64_t{size[0]} * size[1] * size[2];
     std::vector<uint8_t> input(n * bytes_);
     std::string error;
-    if (!reader_.read(b.origin, b.box, input.data(), &error)) {
+    if (!reader_.read(origin, size, input.data(), &error)) {
       b.error = ioFailure(error);
       return;
     }
@@ -948,10 +925,10 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
       b.max_abs = std::max(b.max_abs, error_here);
     }
     if (!residual_step) return;
-    const ArrayBox source_box{{b.box[0], b.box[1], b.box[2]}, num_dims_};
-    b.residual = coder.encode(array, full_resolution, b.first, b.last, b.origin, source_box, skip.data(), 1,
+    const ArrayBox source_box{{size[0], size[1], size[2]}, num_dims_};
+    b.residual = coder.encode(array, full_resolution, b.at.first, b.at.last, origin, source_box, skip.data(), 1,
                               [&](const ArrayBlock& local, int64_t* q) {
-                                copyBlockOut(residual.data(), b.box[0], size_t{b.box[0]} * b.box[1], local, q);
+                                copyBlockOut(residual.data(), size[0], size_t{size[0]} * size[1], local, q);
                                 return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
                               });
   };
@@ -959,13 +936,7 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
   const size_t batch = 2 * static_cast<size_t>(threads);
   for (size_t at = 0; at < boxes.size(); at += batch) {
     std::vector<BoxResult> results(std::min(batch, boxes.size() - at));
-    for (size_t i = 0; i < results.size(); ++i) {
-      const PrecinctBox& pb = boxes[at + i];
-      std::copy(pb.first, pb.first + 3, results[i].first);
-      std::copy(pb.last, pb.last + 3, results[i].last);
-      std::copy(pb.origin, pb.origin + 3, results[i].origin);
-      std::copy(pb.size, pb.size + 3, results[i].box);
-    }
+    for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[at + i];
     parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
     for (BoxResult& b : results) {
       if (!b.error.ok()) return b.error;
@@ -1022,7 +993,6 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
         options_.max_error >= 0 ? boundBaseStep(residual_step) : options_.step * (1.0 / setup_.scale);
     if (Error e = codeBands(delta, &pass_); !e.ok()) return e;
   }
-  progress(0.7);
   // The stream without meta and residual, to decode.
   Spill prefix;
   if (Error e = prefix.open(); !e.ok()) return e;

@@ -9,17 +9,13 @@
 #include <limits>
 #include <memory>
 
-#include "bitstream/range_coder_adapter.h"
 #include "common/byte_writer.h"
 #include "grid/array_encoding.h"
 #include "grid/band_quantizer.h"
 #include "grid/encoder_setup.h"
-#include "grid/coefficient_coding.h"
 #include "grid/oracle.h"
 #include "grid/precincts.h"
-#include "grid/rd_quantizer.h"
 #include "grid/void_fill.h"
-#include "grid/weighted_array_coding.h"
 #include "mrsv/encode.h"
 #include "wavelet/axis_plan.h"
 #include "wavelet/synthesis_fixed.h"
@@ -115,9 +111,7 @@ Error GridEncoder::prepare(const GridHeader& header, const std::vector<uint8_t>&
   WaveletSetup setup;
   if (Error e = makeWaveletSetup(header_, c_min_, c_max_, options, &setup); !e.ok()) return e;
   setup_ = std::move(setup);
-  // Weighted prediction exists only with range coding (spec 5.3).
-  prediction_ = options.entropy_mode == kEntropyBaseline ? WaveletEncodeOptions::Prediction::kNeighbour
-                                                         : options.prediction;
+  prediction_ = options.prediction;  // encodeCoarsestBand() keeps to what the entropy mode allows
   const uint32_t size[3] = {header_.size_x, header_.size_y, header_.size_z};
 
   // Normalised values, voids filled, then padded by repeating the last sample
@@ -242,23 +236,10 @@ uint64_t GridEncoder::quantizeBand(uint16_t index, double delta, std::vector<int
         }
       }
   }
-  if (setup_.header.precinct_log2 == 0) {
-    any = quantizeArray(quantizer, c.data(), box, q->data());
-  } else {
-    const int axis_levels[3] = {setup_.header.levels[0], setup_.header.levels[1], setup_.header.levels[2]};
-    int resolution[3];
-    bandResolution(band.level, axis_levels, resolution);
-    std::vector<double> block_c;
-    std::vector<int64_t> block_q;
-    const size_t row = box.size[0], slice = row * box.size[1];
-    for (const ArrayBlock& b : arrayBlocks(box, resolution, setup_.header.precinct_log2)) {
-      block_c.resize(b.box.count());
-      block_q.resize(b.box.count());
-      copyBlockOut(c.data(), row, slice, b, block_c.data());
-      any |= quantizeArray(quantizer, block_c.data(), b.box, block_q.data());
-      copyBlockIn(block_q.data(), b, q->data(), row, slice);
-    }
-  }
+  const int axis_levels[3] = {setup_.header.levels[0], setup_.header.levels[1], setup_.header.levels[2]};
+  int resolution[3];
+  bandResolution(band.level, axis_levels, resolution);
+  any = quantizeBlocked(quantizer, c.data(), box, resolution, setup_.header.precinct_log2, q->data());
   return any ? quantizer.step : 0;
 }
 
@@ -267,12 +248,7 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
   const bool coarsest = band.mask == 0;
   std::vector<int64_t> q;
   uint64_t step = quantizeBand(index, delta, &q);
-  std::vector<uint8_t> payload;
-  ByteWriter w(&payload);
-  w.u16(index);
-  w.u8(0);  // band_flags, set below
-  w.u8(0);
-  w.u64(step);
+  std::vector<uint8_t> payload = bandChunkHead(index, step);
   if (!step) return payload;
   ArrayBox box;
   box.num_dims = setup_.plan.num_dims;
@@ -288,11 +264,8 @@ std::vector<uint8_t> GridEncoder::bandChunk(uint16_t index, double delta) {
   // The coarsest block is coded with neighbour prediction and, with range
   // coding, also with weighted prediction; the smaller one is kept (5.9).
   const bool samples = box.count() == valid_.size() && valid_count_ < valid_.size();
-  const uint8_t choice = prediction_ == WaveletEncodeOptions::Prediction::kNeighbour ? kBandPredictionNeighbour
-                         : prediction_ == WaveletEncodeOptions::Prediction::kWeighted ? kBandPredictionWeighted
-                                                                                     : 0;
   std::vector<uint8_t> coded;
-  payload[2] = encodeCoarsestBand(setup_.header, q, box, resolution, choice, samples ? valid_.data() : nullptr,
+  payload[2] = encodeCoarsestBand(setup_.header, q, box, resolution, prediction_, samples ? valid_.data() : nullptr,
                                   &coded);
   payload.insert(payload.end(), coded.begin(), coded.end());
   return payload;

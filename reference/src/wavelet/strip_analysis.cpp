@@ -98,11 +98,4 @@ void analyzeBelow(const GridPlan& plan, int level, int axis, const uint32_t dims
     if (plan.axis[a].levels >= level) analyzeAxis(dims, a, data, threads);
 }
 
-void analyzeStrip(const GridPlan& plan, const StripLevel& s, std::vector<double>* rows, uint32_t first,
-                  uint32_t count, uint32_t k0, uint32_t k1, int threads) {
-  uint32_t dims[3] = {s.box[0], s.box[1], s.box[2]};
-  keepAlong(s, dims, rows, first, count, k0, k1, threads);
-  analyzeBelow(plan, s.level, s.axis, dims, rows->data(), threads);
-}
-
 }  // namespace mrsv::wavelet

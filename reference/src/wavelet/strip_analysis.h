@@ -47,13 +47,4 @@ void keepAlong(const StripLevel& s, uint32_t dims[3], std::vector<double>* data,
 // splits, in analyze()'s order (y, then x).
 void analyzeBelow(const GridPlan& plan, int level, int axis, const uint32_t dims[3], double* data, int threads = 1);
 
-// One level over a strip: `rows` holds input rows [first, first + count) as
-// stripInput() gave them, and on return the low rows [k0, min(k1, lows))
-// then the high rows [k0, min(k1, highs)), each transformed along every axis
-// split at this level, in the Mallat layout of the level's box less axis s.
-// The lines are shared among `threads` threads; the values are the same
-// whatever the count.
-void analyzeStrip(const GridPlan& plan, const StripLevel& s, std::vector<double>* rows, uint32_t first,
-                  uint32_t count, uint32_t k0, uint32_t k1, int threads = 1);
-
 }  // namespace mrsv::wavelet
