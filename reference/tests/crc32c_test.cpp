@@ -37,6 +37,22 @@ TEST(Crc32c, IncrementalEqualsOneShotAtEverySplit) {
     EXPECT_EQ(crc32c(crc32c(0, p, split), p + split, s.size() - split), whole) << split;
 }
 
+// Parts checksummed apart combine to the whole's CRC, whatever the split
+// (empty parts and parts longer than a power of two included).
+TEST(Crc32c, CombinedPartsGiveTheWhole) {
+  std::vector<uint8_t> data(70000);
+  uint32_t x = 99;
+  for (uint8_t& b : data) b = static_cast<uint8_t>((x = x * 1103515245u + 12345u) >> 24);
+  const uint32_t whole = crc32c(0, data.data(), data.size());
+  for (size_t split : {size_t{0}, size_t{1}, size_t{8}, size_t{4095}, size_t{65536}, data.size() - 1, data.size()}) {
+    const uint32_t a = crc32c(0, data.data(), split), b = crc32c(0, data.data() + split, data.size() - split);
+    EXPECT_EQ(crc32cCombine(a, b, data.size() - split), whole) << split;
+  }
+  // Three parts, combined left to right.
+  const uint32_t ab = crc32cCombine(crc32c(0, data.data(), 100), crc32c(0, data.data() + 100, 900), 900);
+  EXPECT_EQ(crc32cCombine(ab, crc32c(0, data.data() + 1000, 69000), 69000), whole);
+}
+
 // The instruction path and the tables agree on every length and alignment.
 TEST(Crc32c, HardwareAndTablesAgree) {
   std::vector<uint8_t> data(4099);

@@ -1,15 +1,22 @@
-// mrsv-mpi: tiled grids (spec 11) encoded and decoded by MPI ranks.
+// mrsv-mpi: tiled grids (spec 11) and grids in precincts (5.7.6) encoded and
+// decoded by MPI ranks.
 //
 //   mpirun -np N mrsv-mpi encode --dims X,Y[,Z] --type T --tile S [options] IN.raw OUT.mrsv
+//   mpirun -np N mrsv-mpi encode --dims X,Y[,Z] --type T --precinct S [options] IN.raw OUT.mrsv
 //   mpirun -np N mrsv-mpi decode IN.mrsv OUT.raw
 //
-// encode: each rank reads its rows of tiles from the raw file, codes them,
-// and the ranks agree on the index (every tile's chunk lengths, gathered) and
-// the error figures; then each writes its chunks at their offsets with MPI-IO
-// into one file. The stream is byte-identical to 'mrsv encode --tile' of the
-// same input with the same options, whatever the number of ranks.
-// decode: each rank decodes a band of rows through the tile index (reading
-// only its tiles) and writes it at its place in the raw output with MPI-IO.
+// encode --tile: each rank reads its rows of tiles from the raw file, codes
+// them, and the ranks agree on the index (every tile's chunk lengths,
+// gathered) and the error figures; then each writes its chunks at their
+// offsets with MPI-IO into one file. The stream is byte-identical to 'mrsv
+// encode --tile' of the same input with the same options, whatever the
+// number of ranks.
+// encode --precinct: the out-of-core precinct encoder run by the ranks as a
+// team (decision D92: pieces, boxes and blocks dealt round-robin, the
+// low-pass parts shared through MPI-IO scratch files); byte-identical to
+// 'mrsv encode --precinct --out-of-core'.
+// decode: each rank decodes a band of rows by region (through the tile index,
+// or by precinct) and writes it at its place in the raw output with MPI-IO.
 #include <mpi.h>
 
 #include <algorithm>
@@ -22,6 +29,7 @@
 
 #include "cli.h"
 #include "heap_tuning.h"
+#include "mpi_team.h"
 #include "mrsv/encode.h"
 #include "mrsv/file_io.h"
 #include "mrsv/raw_grid.h"
@@ -37,20 +45,26 @@ const char kHelp[] =
     "Usage: mpirun -np N mrsv-mpi encode [options] IN.raw OUT.mrsv\n"
     "       mpirun -np N mrsv-mpi decode IN.mrsv OUT.raw\n"
     "\n"
-    "Tiled grids (spec 11) coded and decoded by MPI ranks, each working on its own rows of\n"
-    "tiles and writing its part of one file with MPI-IO. The stream is byte-identical to\n"
-    "'mrsv encode --tile' of the same input and options, whatever the number of ranks.\n"
+    "Tiled grids (spec 11) and grids in precincts (5.7.6) coded and decoded by MPI ranks,\n"
+    "each working on its own part and writing it into one file with MPI-IO. The stream is\n"
+    "byte-identical to 'mrsv encode --tile' (or 'mrsv encode --precinct --out-of-core') of\n"
+    "the same input and options, whatever the number of ranks.\n"
     "\n"
     "encode options:\n"
     "  --dims X[,Y[,Z]]      grid size in samples (IN is headerless raw, x fastest)\n"
     "  --type T              uint8, int16, uint16, int32, float32, float64\n"
     "  --endian little|big   byte order of IN (default little)\n"
     "  --nodata V            sample value that marks missing data\n"
-    "  --tile N[,N[,N]]      tile size (required)\n"
+    "  --tile N[,N[,N]]      tile size; or\n"
+    "  --precinct N          precincts of N samples per axis (a power of two, 16 or more),\n"
+    "                        coded out of core by the ranks together (2-D and 3-D grids)\n"
     "  --lossless            every sample exact (the default)\n"
     "  --max-error D         every sample within D (integer samples)\n"
-    "  --bound-route R       residual, predictive or auto (default): as mrsv encode\n"
+    "  --bound-route R       residual, predictive or auto (default): as mrsv encode (--tile)\n"
     "  --step S              quantiser step S in sample units\n"
+    "  --bits-per-sample B   the finest step whose stream fits B bits per sample (--precinct)\n"
+    "  --scratch DIR         --precinct: where the ranks share their temporary files (a\n"
+    "                        directory every rank sees; default: the directory of OUT)\n"
     "  --levels L            at most L decomposition levels per axis\n"
     "  --progressive         the most levels --levels allows in every tile\n"
     "  --threads N           threads per rank (default 1)\n"
@@ -118,11 +132,49 @@ struct SharedFile {
   }
 };
 
+// The out-of-core precinct encoder run by the ranks as one team; the stream
+// goes to a temporary name beside OUT, renamed when complete.
+int encodePrecincts(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                    const WaveletEncodeOptions& options, int threads, const std::string& in, const std::string& out,
+                    const std::string& scratch) {
+  MpiTeam team(scratch);
+  const std::string temp = out + ".mrsv-mpi-tmp";
+  if (rank == 0) std::remove(temp.c_str());
+  MPI_Barrier(MPI_COMM_WORLD);
+  Error e;
+  std::unique_ptr<MpiFile> file = MpiFile::open(temp, false, &e);
+  if (int s = agree(file ? 0 : cli::kExitIo, out + ": cannot create the output with MPI-IO")) return s;
+  PrecinctStreamOptions run;
+  run.threads = threads;
+  WaveletEncodeReport report;
+  // Every rank returns the same error: the team agreed on it.
+  e = encodePrecinctGridAsTeam(header, reader, metadata, options, run, team, *file, &report);
+  file->close();
+  int status = e.ok() ? 0 : e.status == Status::kIoError ? cli::kExitIo : cli::kExitInvalidData;
+  if (rank == 0) {
+    if (status == 0 && std::rename(temp.c_str(), out.c_str()) != 0) {
+      status = cli::kExitIo;
+      e = Error{Status::kIoError, 0, "file", out + ": cannot rename the output into place"};
+    }
+    if (status != 0) {
+      std::remove(temp.c_str());
+      std::fprintf(stderr, "mrsv-mpi: %s: %s: %s\n", in.c_str(), e.field.c_str(), e.message.c_str());
+    } else {
+      std::fprintf(stderr, "mrsv-mpi encode: %s: %llu bytes, %.4f bits/sample, max error %g, %d ranks, %.3f s\n",
+                   out.c_str(), static_cast<unsigned long long>(report.bytes), report.bits_per_sample,
+                   report.max_abs_error, ranks, elapsed());
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return status;
+}
+
 int runEncode(int argc, char** argv) {
   Args args;
   std::string error;
   if (!args.parse(argc, argv,
-                  {{"dims", "type", "endian", "nodata", "tile", "max-error", "bound-route", "step", "levels", "threads"},
+                  {{"dims", "type", "endian", "nodata", "tile", "precinct", "max-error", "bound-route", "step",
+                    "bits-per-sample", "levels", "threads", "scratch"},
                    {"lossless", "progressive", "help"},
                    {"meta"}},
                   &error))
@@ -131,8 +183,10 @@ int runEncode(int argc, char** argv) {
     if (rank == 0) std::fputs(kHelp, stdout);
     return 0;
   }
-  if (args.positional().size() != 2 || !args.has("dims") || !args.has("type") || !args.has("tile"))
-    return agree(cli::kExitUsage, "encode needs --dims, --type, --tile, IN.raw and OUT.mrsv (see --help)");
+  if (args.positional().size() != 2 || !args.has("dims") || !args.has("type") ||
+      args.has("tile") == args.has("precinct"))
+    return agree(cli::kExitUsage,
+                 "encode needs --dims, --type, one of --tile and --precinct, IN.raw and OUT.mrsv (see --help)");
   const std::string& in = args.positional()[0];
   const std::string& out = args.positional()[1];
   GridHeader header;
@@ -145,9 +199,9 @@ int runEncode(int argc, char** argv) {
       return agree(cli::kExitUsage, error);
     header.grid_flags |= kGridFlagHasNodata;
   }
-  std::vector<uint64_t> sizes;
-  if (!cli::parseWholeNumberList(args.value("tile"), 1, kMaxGridAxis, &sizes) ||
-      (sizes.size() != 1 && sizes.size() != header.num_dims))
+  std::vector<uint64_t> sizes{1};
+  if (args.has("tile") && (!cli::parseWholeNumberList(args.value("tile"), 1, kMaxGridAxis, &sizes) ||
+                           (sizes.size() != 1 && sizes.size() != header.num_dims)))
     return agree(cli::kExitUsage, "--tile '" + args.value("tile") + "': give 1 size or one per axis, each from 1 to " +
                                       std::to_string(kMaxGridAxis));
   TiledEncodeOptions tiled;
@@ -175,6 +229,25 @@ int runEncode(int argc, char** argv) {
     if (!cli::parseDouble(args.value("step"), &options.step) || !(options.step > 0))
       return agree(cli::kExitUsage, "--step must be a positive number");
   }
+  if (args.has("bits-per-sample")) {
+    if (!args.has("precinct")) return agree(cli::kExitUsage, "--bits-per-sample goes with --precinct");
+    options.max_error = -1;
+    if (!cli::parseDouble(args.value("bits-per-sample"), &options.bits_per_sample) ||
+        !(options.bits_per_sample >= 1e-3 && options.bits_per_sample <= 64))
+      return agree(cli::kExitUsage, "--bits-per-sample must be a number from 0.001 to 64");
+  }
+  if (int(args.has("step")) + int(args.has("bits-per-sample")) + int(args.has("max-error")) +
+          int(args.flag("lossless")) > 1)
+    return agree(cli::kExitUsage, "give at most one of --lossless, --max-error, --step, --bits-per-sample");
+  if (args.has("precinct")) {
+    const std::string& text = args.value("precinct");
+    for (int p = kMinPrecinctLog2; p <= kMaxPrecinctLog2; ++p)
+      if (text == std::to_string(1u << p)) options.precinct_log2 = p;
+    if (options.precinct_log2 == 0)
+      return agree(cli::kExitUsage, "--precinct '" + text + "': must be a power of two from " +
+                                        std::to_string(1u << kMinPrecinctLog2) + " to " +
+                                        std::to_string(1u << kMaxPrecinctLog2));
+  }
   if (args.has("levels")) {
     if (!cli::parseUint64(args.value("levels"), &number) || number > 16)
       return agree(cli::kExitUsage, "--levels must be 0 to 16");
@@ -186,10 +259,17 @@ int runEncode(int argc, char** argv) {
   TilingHeader tiling;
   std::copy(tiled.tile_size, tiled.tile_size + 3, tiling.tile_size);
   if (std::string problem = gridHeaderProblem(header); !problem.empty()) return agree(cli::kExitUsage, problem);
-  if (std::string problem = tilingProblem(tiling, header); !problem.empty()) return agree(cli::kExitUsage, problem);
+  if (args.has("tile"))
+    if (std::string problem = tilingProblem(tiling, header); !problem.empty()) return agree(cli::kExitUsage, problem);
+  if (isSameFile(in, out)) return agree(cli::kExitUsage, "OUT is the same file as IN; refusing to overwrite the input");
   std::unique_ptr<GridBoxReader> reader = openRawBoxReader(
       in, header, args.has("endian") && args.value("endian") == "big" ? Endian::kBig : Endian::kLittle, &error);
   if (int s = agree(reader ? 0 : cli::kExitIo, error)) return s;
+  if (args.has("precinct")) {
+    std::string scratch = args.has("scratch") ? args.value("scratch") : out.substr(0, out.find_last_of('/') + 1);
+    if (scratch.empty()) scratch = ".";
+    return encodePrecincts(header, *reader, metadata, options, tiled.threads, in, out, scratch);
+  }
 
   // This rank's rows of tiles: row r (tiles along x) goes to rank r % ranks.
   GridHeader h = header;
@@ -312,18 +392,24 @@ int runDecode(int argc, char** argv) {
   Error e = decodeGridRegion(*source, one, DecodeOptions{}, &probe);
   if (int s = agree(e.ok() ? 0 : cli::kExitInvalidData, in + ": " + e.describe())) return s;
   const GridHeader& h = probe.header;
-  if (int s = agree(h.coding == GridCoding::kTiled ? 0 : cli::kExitUsage, in + ": not a tiled grid (encode --tile)"))
+  const bool precincts = h.coding == GridCoding::kWavelet && probe.wavelet.precinct_log2 > 0;
+  if (int s = agree(h.coding == GridCoding::kTiled || precincts ? 0 : cli::kExitUsage,
+                    in + ": neither a tiled grid (encode --tile) nor a grid in precincts (--precinct)"))
     return s;
-  // Bands of the slowest axis with more than one tile: contiguous in OUT.
-  const int axis = h.num_dims == 3 && (h.size_z + probe.tile_size[2] - 1) / probe.tile_size[2] > 1 ? 2
-                   : h.num_dims >= 2 ? 1 : 0;
+  // The units a rank's band is made of: tiles, or precincts (2^P samples).
+  uint32_t unit[3];
+  for (int a = 0; a < 3; ++a) unit[a] = precincts ? 1u << probe.wavelet.precinct_log2 : probe.tile_size[a];
+  // Bands of the slowest axis, a whole number of units each: contiguous in
+  // OUT. (A band of another axis is not: with one unit along z, rank 0
+  // decodes the whole grid.)
+  const int axis = h.num_dims - 1;
   const uint32_t sizes[3] = {h.size_x, h.size_y, h.size_z};
-  const uint32_t rows = (sizes[axis] + probe.tile_size[axis] - 1) / probe.tile_size[axis];
+  const uint32_t rows = (sizes[axis] + unit[axis] - 1) / unit[axis];
   const uint32_t per_rank = (rows + ranks - 1) / ranks;
   GridRegion band;
   for (int a = 0; a < 3; ++a) band.hi[a] = sizes[a];
-  band.lo[axis] = std::min(sizes[axis], rank * per_rank * probe.tile_size[axis]);
-  band.hi[axis] = std::min<uint64_t>(sizes[axis], static_cast<uint64_t>(rank + 1) * per_rank * probe.tile_size[axis]);
+  band.lo[axis] = std::min<uint64_t>(sizes[axis], static_cast<uint64_t>(rank) * per_rank * unit[axis]);
+  band.hi[axis] = std::min<uint64_t>(sizes[axis], static_cast<uint64_t>(rank + 1) * per_rank * unit[axis]);
   DecodedGrid part;
   DecodeOptions options;
   if (args.has("threads")) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "mrsv/encode_team.h"
 #include "mrsv/grid.h"
 #include "mrsv/metadata.h"
 #include "mrsv/status.h"
@@ -143,5 +144,17 @@ struct PrecinctStreamOptions {
 Error encodePrecinctGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
                                    const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
                                    ByteSink& out, WaveletEncodeReport* report);
+
+// encodePrecinctGridFromReader() by a team of processes (mrsv-mpi, decision
+// D92), each member calling it with its own reader of the same grid: the
+// pieces of every level, the boxes of the scan and of the decode pass are
+// dealt among the members round-robin, the low-pass parts travel through
+// the team's scratch files, and every member writes the blocks it coded
+// into `out` (shared), member 0 the rest. The stream (report->bytes long)
+// is byte-identical to encodePrecinctGridFromReader()'s whatever the team's
+// size and thread counts.
+Error encodePrecinctGridAsTeam(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                               const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
+                               EncodeTeam& team, SharedScratch& out, WaveletEncodeReport* report);
 
 }  // namespace mrsv

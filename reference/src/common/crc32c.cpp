@@ -50,6 +50,34 @@ uint32_t crc32cPortable(uint32_t crc, const uint8_t* data, size_t size) {
   return ~crc;
 }
 
+namespace {
+
+// a * b modulo the polynomial, both in the reflected order of the register
+// (bit 31 is the coefficient of x^0).
+uint32_t multiplyModPolynomial(uint32_t a, uint32_t b) {
+  uint32_t product = 0;
+  for (uint32_t bit = 1u << 31; bit != 0; bit >>= 1) {
+    if (a & bit) product ^= b;
+    b = (b & 1u) ? (b >> 1) ^ kPolynomial : b >> 1;  // b * x
+  }
+  return product;
+}
+
+}  // namespace
+
+// A register extended over n zero bytes is multiplied by x^(8n) (the
+// complements at start and end cancel between the two CRCs), so
+// crc(A B) = crc(A) x^(8 |B|) + crc(B).
+uint32_t crc32cCombine(uint32_t crc_a, uint32_t crc_b, uint64_t length_b) {
+  uint32_t power = 1u << 31;        // x^0
+  uint32_t square = 1u << (31 - 8);  // x^8, squared per bit of length_b
+  for (uint64_t n = length_b; n != 0; n >>= 1) {
+    if (n & 1) power = multiplyModPolynomial(power, square);
+    square = multiplyModPolynomial(square, square);
+  }
+  return multiplyModPolynomial(power, crc_a) ^ crc_b;
+}
+
 #ifdef MRSV_CRC32C_SSE42
 namespace {
 

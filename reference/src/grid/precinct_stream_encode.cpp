@@ -26,6 +26,7 @@
 #include "grid/precincts.h"
 #include "grid/void_fill.h"
 #include "mrsv/encode.h"
+#include "mrsv/encode_team.h"
 #include "mrsv/tiled_grid.h"
 #include "tiles/tile_encoding.h"
 #include "wavelet/strip_analysis.h"
@@ -52,8 +53,9 @@ struct FileCloser {
 };
 using TempFile = std::unique_ptr<std::FILE, FileCloser>;
 
-// A temporary file written at its end and read anywhere (pread).
-class Spill : public ByteSink {
+// A temporary file written at its end or at offsets, read anywhere (pread):
+// the scratch files of a team of one.
+class Spill : public ByteSink, public SharedScratch {
  public:
   bool write(const uint8_t* data, size_t n) override { return append(data, n).ok(); }
   Error open() {
@@ -68,7 +70,7 @@ class Spill : public ByteSink {
     return {};
   }
   // Writes at `offset` (a file written this way only: no buffered appends).
-  Error writeAt(uint64_t offset, const void* data, size_t n) {
+  Error writeAt(uint64_t offset, const void* data, size_t n) override {
     const auto* p = static_cast<const uint8_t*>(data);
     end_ = std::max<uint64_t>(end_, offset + n);
     while (n > 0) {
@@ -80,7 +82,7 @@ class Spill : public ByteSink {
     }
     return {};
   }
-  Error read(uint64_t offset, size_t n, void* out) {
+  Error readAt(uint64_t offset, size_t n, void* out) override {
     if (std::fflush(file_.get()) != 0) return ioFailure("cannot write a temporary file");
     auto* p = static_cast<uint8_t*>(out);
     while (n > 0) {
@@ -92,42 +94,106 @@ class Spill : public ByteSink {
     }
     return {};
   }
+  Error sync() override { return {}; }
 
  private:
   TempFile file_;
   uint64_t end_ = 0;
 };
 
-// A temporary file as a stream for the region decoder.
-class SpillSource : public ByteSource {
+// The team of one process.
+class SoloTeam : public EncodeTeam {
  public:
-  explicit SpillSource(Spill* spill) : spill_(spill) {}
-  uint64_t size() const override { return spill_->size(); }
+  int member() const override { return 0; }
+  int members() const override { return 1; }
+  Error agree(const Error& mine) override { return mine; }
+  void sum(std::vector<uint64_t>*) override {}
+  void min(std::vector<double>*) override {}
+  void max(std::vector<double>*) override {}
+  std::unique_ptr<SharedScratch> scratch(Error* error) override {
+    auto spill = std::make_unique<Spill>();
+    *error = spill->open();
+    return spill;
+  }
+};
+
+// A stream written by a team of one, in order, as the positioned writes of
+// a shared file: each must start where the one before ended.
+class InOrderScratch : public SharedScratch {
+ public:
+  explicit InOrderScratch(ByteSink* out) : out_(out) {}
+  Error writeAt(uint64_t offset, const void* data, size_t n) override {
+    if (offset != end_) return ioFailure("internal error: the stream is not written in order");
+    end_ += n;
+    return out_->write(static_cast<const uint8_t*>(data), n) ? Error{} : ioFailure("cannot write the stream");
+  }
+  Error readAt(uint64_t, size_t, void*) override { return ioFailure("internal error: the stream is write-only"); }
+  Error sync() override { return {}; }
+
+ private:
+  ByteSink* out_;
+  uint64_t end_ = 0;
+};
+
+// The first `size` bytes of a scratch file as a stream for the region decoder.
+class ScratchSource : public ByteSource {
+ public:
+  ScratchSource(SharedScratch* scratch, uint64_t size) : scratch_(scratch), size_(size) {}
+  uint64_t size() const override { return size_; }
 
  protected:
   bool readAt(uint64_t offset, size_t n, uint8_t* out) override {
-    return offset + n <= spill_->size() && spill_->read(offset, n, out).ok();
+    return offset + n <= size_ && scratch_->readAt(offset, n, out).ok();
   }
 
  private:
-  Spill* spill_;
+  SharedScratch* scratch_;
+  uint64_t size_;
 };
 
 // One blocked array's blocks, coded and spilled: per block (index order) its
-// length (0: all zeros, nothing spilled) and place.
+// length (0: all zeros, nothing spilled), its CRC-32C and, on the member that
+// coded it, its place in that member's spill (elsewhere kElsewhere).
 struct SpilledArray {
-  std::vector<uint32_t> length;
+  static constexpr uint64_t kElsewhere = UINT64_MAX;
+  std::vector<uint32_t> length, crc;
   std::vector<uint64_t> offset;
   // Room for the `n` blocks of the array's grid, the first time.
   void sized(uint64_t n) {
     if (!length.empty()) return;
     length.assign(n, 0);
-    offset.assign(n, 0);
+    crc.assign(n, 0);
+    offset.assign(n, kElsewhere);
+  }
+  bool anyCoded() const {
+    return std::any_of(length.begin(), length.end(), [](uint32_t l) { return l != 0; });
   }
   uint64_t codedSize() const {
     uint64_t n = 4 * uint64_t{length.size()};
     for (uint32_t l : length) n += l;
     return n;
+  }
+  // Spills a block this member coded.
+  Error put(uint64_t index, const std::vector<uint8_t>& bytes, Spill* spill) {
+    length[index] = static_cast<uint32_t>(bytes.size());
+    crc[index] = crc32c(0, bytes.data(), bytes.size());
+    return spill->append(bytes.data(), bytes.size(), &offset[index]);
+  }
+  // Collective: every block's length and CRC on every member (each block
+  // was coded by one member: the others add zeros); `blocks`: the array's.
+  void share(EncodeTeam& team, uint64_t blocks) {
+    sized(blocks);
+    if (team.members() == 1) return;
+    std::vector<uint64_t> both(2 * length.size());
+    for (size_t i = 0; i < length.size(); ++i) {
+      both[2 * i] = length[i];
+      both[2 * i + 1] = crc[i];
+    }
+    team.sum(&both);
+    for (size_t i = 0; i < length.size(); ++i) {
+      length[i] = static_cast<uint32_t>(both[2 * i]);
+      crc[i] = static_cast<uint32_t>(both[2 * i + 1]);
+    }
   }
 };
 
@@ -193,10 +259,7 @@ class BlockCoder {
     out->sized(uint64_t{count[0]} * count[1] * count[2]);
     for (size_t i = 0; i < coded.index.size(); ++i) {
       if (coded.bytes[i].empty()) continue;
-      out->length[coded.index[i]] = static_cast<uint32_t>(coded.bytes[i].size());
-      if (Error e = spill_->append(coded.bytes[i].data(), coded.bytes[i].size(), &out->offset[coded.index[i]]);
-          !e.ok())
-        return e;
+      if (Error e = out->put(coded.index[i], coded.bytes[i], spill_); !e.ok()) return e;
     }
     return {};
   }
@@ -206,79 +269,80 @@ class BlockCoder {
   Spill* spill_;
 };
 
-// Writes one chunk whose payload arrives in pieces, with its CRC-32C.
-class ChunkWriter {
+// Lays a stream's chunks out one after another in a shared file: member 0
+// writes the chunk headers, the fields before the blocks, the tables of
+// lengths and the CRCs (the blocks' own CRCs combined); each member writes
+// the blocks it coded. Every member computes the same offsets.
+class StreamLayout {
  public:
-  ChunkWriter(ByteSink* out, const ChunkType& type, uint64_t length) : out_(out) {
-    uint8_t head[kChunkHeaderSize];
-    for (int i = 0; i < 4; ++i) head[i] = static_cast<uint8_t>(type.c[i]);
-    for (int i = 0; i < 4; ++i) head[4 + i] = static_cast<uint8_t>(length >> (8 * i));
-    error_ = add(head, sizeof head);
+  StreamLayout(EncodeTeam& team, SharedScratch* out, uint64_t at) : team_(team), out_(out), end_(at) {}
+  uint64_t end() const { return end_; }
+
+  // Bytes written as they are (member 0).
+  Error raw(const std::vector<uint8_t>& bytes) {
+    Error e = team_.member() == 0 ? out_->writeAt(end_, bytes.data(), bytes.size()) : Error{};
+    end_ += bytes.size();
+    return e;
   }
-  Error add(const uint8_t* p, size_t n) {
-    if (!error_.ok()) return error_;
-    crc_ = crc32c(crc_, p, n);
-    return out_->write(p, n) ? Error{} : ioFailure("cannot write the stream");
+  Error chunk(const ChunkType& type, const std::vector<uint8_t>& payload) {
+    return blockedChunk(type, payload, nullptr, nullptr);
   }
-  Error finish() {
-    if (!error_.ok()) return error_;
-    uint8_t tail[kChunkCrcSize];
-    for (int i = 0; i < 4; ++i) tail[i] = static_cast<uint8_t>(crc_ >> (8 * i));
-    return out_->write(tail, sizeof tail) ? Error{} : ioFailure("cannot write the stream");
+  // A blocked array's chunk: `head` (the chunk's own fields), the table of
+  // lengths, the blocks (those of this member read from `blocks`). Without
+  // `array`, a chunk of `head` alone.
+  Error blockedChunk(const ChunkType& type, const std::vector<uint8_t>& head, const SpilledArray* array,
+                     Spill* blocks) {
+    const uint64_t length = head.size() + (array ? array->codedSize() : 0);
+    if (length > kMaxChunkPayload)
+      return invalid("precinct", "a " + std::string(type.c, 4) + " chunk would hold " + std::to_string(length) +
+                                     " bytes, above the limit of " + std::to_string(kMaxChunkPayload) +
+                                     " (use a larger step or a smaller grid)");
+    std::vector<uint8_t> first;
+    ByteWriter w(&first);
+    for (int i = 0; i < 4; ++i) w.u8(static_cast<uint8_t>(type.c[i]));
+    w.u32(static_cast<uint32_t>(length));
+    first.insert(first.end(), head.begin(), head.end());
+    if (array)
+      for (uint32_t l : array->length) w.u32(l);
+    uint32_t crc = crc32c(0, first.data(), first.size());  // the CRC covers the chunk header too (2.3)
+    if (Error e = raw(first); !e.ok()) return e;
+    std::vector<uint8_t> bytes;
+    for (size_t b = 0; array && b < array->length.size(); ++b) {
+      const uint32_t n = array->length[b];
+      if (n == 0) continue;
+      if (array->offset[b] != SpilledArray::kElsewhere) {
+        bytes.resize(n);
+        if (Error e = blocks->readAt(array->offset[b], n, bytes.data()); !e.ok()) return e;
+        if (Error e = out_->writeAt(end_, bytes.data(), n); !e.ok()) return e;
+      }
+      crc = crc32cCombine(crc, array->crc[b], n);
+      end_ += n;
+    }
+    std::vector<uint8_t> tail;
+    ByteWriter(&tail).u32(crc);
+    return raw(tail);
   }
 
  private:
-  ByteSink* out_;
-  uint32_t crc_ = 0;
-  Error error_;
+  EncodeTeam& team_;
+  SharedScratch* out_;
+  uint64_t end_;
 };
-
-// A blocked array's chunk: `head` (the chunk's own fields), the table of
-// lengths, the blocks from `blocks`.
-Error writeBlockedChunk(ByteSink* out, const ChunkType& type, const std::vector<uint8_t>& head,
-                        const SpilledArray& array, Spill* blocks) {
-  const uint64_t length = head.size() + array.codedSize();
-  if (length > kMaxChunkPayload)
-    return invalid("precinct", "a " + std::string(type.c, 4) + " chunk would hold " + std::to_string(length) +
-                                   " bytes, above the limit of " + std::to_string(kMaxChunkPayload) +
-                                   " (use a larger step or a smaller grid)");
-  ChunkWriter chunk(out, type, length);
-  if (Error e = chunk.add(head.data(), head.size()); !e.ok()) return e;
-  std::vector<uint8_t> table;
-  ByteWriter w(&table);
-  for (uint32_t l : array.length) w.u32(l);
-  if (Error e = chunk.add(table.data(), table.size()); !e.ok()) return e;
-  std::vector<uint8_t> bytes;
-  for (size_t b = 0; b < array.length.size(); ++b) {
-    if (array.length[b] == 0) continue;
-    bytes.resize(array.length[b]);
-    if (Error e = blocks->read(array.offset[b], bytes.size(), bytes.data()); !e.ok()) return e;
-    if (Error e = chunk.add(bytes.data(), bytes.size()); !e.ok()) return e;
-  }
-  return chunk.finish();
-}
-
-Error writeChunk(ByteSink* out, const ChunkType& type, const std::vector<uint8_t>& payload) {
-  ChunkWriter chunk(out, type, payload.size());
-  if (Error e = chunk.add(payload.data(), payload.size()); !e.ok()) return e;
-  return chunk.finish();
-}
 
 class PrecinctStreamEncoder {
  public:
   PrecinctStreamEncoder(const GridHeader& header, GridBoxReader& reader, const WaveletEncodeOptions& options,
-                        const PrecinctStreamOptions& run)
-      : header_(header), reader_(reader), options_(options), run_(run) {}
+                        const PrecinctStreamOptions& run, EncodeTeam& team)
+      : header_(header), reader_(reader), options_(options), run_(run), team_(team) {}
 
-  Error encode(const Metadata& metadata, ByteSink& out, WaveletEncodeReport* report);
+  Error encode(const Metadata& metadata, SharedScratch& out, WaveletEncodeReport* report);
 
  private:
   // The bands coded at one base step.
   struct BandPass {
     double delta = 0;                   // the base step (x units)
-    std::unique_ptr<Spill> blocks;      // the detail bands' coded blocks
+    std::unique_ptr<Spill> blocks;      // the detail bands' coded blocks (this member's)
     std::vector<SpilledArray> bands;    // per band (detail bands)
-    std::vector<bool> any;              // a non-zero integer in the band
     std::vector<uint8_t> coarsest;      // the coarsest band's chunk payload
     uint64_t bytes = 0;                 // framed size of the band chunks
   };
@@ -294,17 +358,21 @@ class PrecinctStreamEncoder {
                   const std::function<double*(uint32_t, uint32_t)>& line);
   void refineTileFill(const uint32_t box[3], const std::vector<uint8_t>& valid, std::vector<double>* tile) const;
   Error analyzeLevel(int level, BandPass* pass);
-  Error writeBands(const BandPass& pass, ByteSink* stream);
+  Error writeBody(const BandPass& pass, StreamLayout* stream);
   Error searchRate(const GridHeader& h, const Metadata& metadata);
-  Error decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally);
+  Error decodePass(SharedScratch* prefix, uint64_t prefix_size, uint32_t residual_step, ErrorTally* tally);
   void progress(double done) {
     if (run_.progress) run_.progress(std::min(done, 1.0));
   }
+  // The pieces, boxes and blocks of a team are dealt round-robin.
+  bool mine(uint64_t item) const { return item % static_cast<uint64_t>(team_.members()) == uint64_t(team_.member()); }
+  uint64_t blockCount(size_t band) const;
 
   const GridHeader header_;
   GridBoxReader& reader_;
   const WaveletEncodeOptions options_;
   const PrecinctStreamOptions run_;
+  EncodeTeam& team_;
   int num_dims_ = 1;
   uint32_t size_[3] = {1, 1, 1};
   size_t bytes_ = 1;          // per sample
@@ -318,13 +386,13 @@ class PrecinctStreamEncoder {
   Spill fills_;                         // the filled tiles' void values, in void order
   std::vector<uint64_t> fill_at_;       // per fill tile: where, or UINT64_MAX (not filled yet)
   std::vector<uint64_t> fill_count_of_; // per fill tile: how many voids
-  Spill blocks_;                        // coded blocks of the mask and the residual
+  Spill blocks_;                        // coded blocks of the mask and the residual (this member's)
   SpilledArray mask_, residual_;
   Error codeBands(double delta, BandPass* pass);
   BandPass pass_;                       // the bands the stream takes
   int iterations_ = 1;                  // passes over the grid (steps tried)
   std::vector<double> coarsest_;        // the coarsest band's coefficients
-  std::unique_ptr<Spill> level_low_;    // the low-pass part of the level just analysed
+  std::unique_ptr<SharedScratch> level_low_;  // the low-pass part of the level just analysed
 };
 
 // The grid as boxes of whole precincts, near-square and of at most 2^19
@@ -372,7 +440,7 @@ Error PrecinctStreamEncoder::scan() {
   tile_has_void_.assign(uint64_t{fill_count_[0]} * fill_count_[1] * fill_count_[2], 0);
   fill_at_.assign(tile_has_void_.size(), UINT64_MAX);
   fill_count_of_.assign(tile_has_void_.size(), 0);
-  if (Error e = fills_.open(); !e.ok()) return e;
+  Error failed = fills_.open();
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_);
@@ -411,50 +479,71 @@ Error PrecinctStreamEncoder::scan() {
       ++r->valid;
     }
   };
-  // A batch of boxes read at once, one per thread; their figures combine in
-  // box order (min, max, sums, the first bad sample), whatever the count.
-  for (size_t at = 0; at < boxes.size(); at += static_cast<size_t>(threads)) {
-    std::vector<BoxScan> scans(std::min<size_t>(static_cast<size_t>(threads), boxes.size() - at));
-    parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[at + i], &scans[i]); });
-    for (size_t i = 0; i < scans.size(); ++i) {
-      const PrecinctBox& box = boxes[at + i];
-      BoxScan& r = scans[i];
-      if (!r.error.ok()) return r.error;
-      if (r.bad != UINT64_MAX) {
-        const uint64_t x = box.origin[0] + r.bad % box.size[0], y = box.origin[1] + (r.bad / box.size[0]) % box.size[1],
-                       z = box.origin[2] + r.bad / (uint64_t{box.size[0]} * box.size[1]);
-        return invalid("samples", "sample " + std::to_string((z * size_[1] + y) * size_[0] + x) +
-                                      " is NaN or infinite; mark such samples with --nodata");
-      }
-      if (r.valid) {
-        c_min_ = first_valid ? r.lo : std::min(c_min_, r.lo);
-        c_max_ = first_valid ? r.hi : std::max(c_max_, r.hi);
-        first_valid = false;
-        valid_count_ += r.valid;
-      }
-      if (r.mask.empty()) continue;
-      // The fill tiles (precincts) of the box that hold voids, and the mask's blocks.
-      const std::vector<uint8_t>& mask = r.mask;
-      for (uint64_t p = 0; p < mask.size(); ++p) {
-        if (!mask[p]) continue;
-        const uint64_t x = box.origin[0] + p % box.size[0], y = box.origin[1] + (p / box.size[0]) % box.size[1],
-                       z = box.origin[2] + p / (uint64_t{box.size[0]} * box.size[1]);
-        tile_has_void_[x / edge + fill_count_[0] * (y / edge + uint64_t{fill_count_[1]} * (z / edge))] = 1;
-      }
-      const ArrayBox source{{box.size[0], box.size[1], box.size[2]}, num_dims_};
-      BlockCoder::Coded coded =
-          coder.encode(array, full_resolution, box.first, box.last, box.origin, source, nullptr, run_.threads,
-                       [&](const ArrayBlock& local, int64_t* q) {
-                         std::vector<uint8_t> m(local.box.count());
-                         copyBlockOut(mask.data(), source.size[0], size_t{source.size[0]} * source.size[1], local,
-                                      m.data());
-                         std::copy(m.begin(), m.end(), q);
-                         return std::any_of(m.begin(), m.end(), [](uint8_t v) { return v != 0; });
-                       });
-      if (Error e = coder.store(array, full_resolution, coded, &mask_); !e.ok()) return e;
+  // This member's boxes, a batch read at once, one per thread; their figures
+  // combine in box order (min, max, sums, the first bad sample), whatever
+  // the count.
+  std::vector<size_t> my_boxes;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (mine(i)) my_boxes.push_back(i);
+  auto combine = [&](const PrecinctBox& box, const BoxScan& r) -> Error {
+    if (!r.error.ok()) return r.error;
+    if (r.bad != UINT64_MAX) {
+      const uint64_t x = box.origin[0] + r.bad % box.size[0], y = box.origin[1] + (r.bad / box.size[0]) % box.size[1],
+                     z = box.origin[2] + r.bad / (uint64_t{box.size[0]} * box.size[1]);
+      return invalid("samples", "sample " + std::to_string((z * size_[1] + y) * size_[0] + x) +
+                                    " is NaN or infinite; mark such samples with --nodata");
     }
-    progress(0.05 * static_cast<double>(at + scans.size()) / static_cast<double>(boxes.size()));
+    if (r.valid) {
+      c_min_ = first_valid ? r.lo : std::min(c_min_, r.lo);
+      c_max_ = first_valid ? r.hi : std::max(c_max_, r.hi);
+      first_valid = false;
+      valid_count_ += r.valid;
+    }
+    if (r.mask.empty()) return {};
+    // The fill tiles (precincts) of the box that hold voids, and the mask's blocks.
+    const std::vector<uint8_t>& mask = r.mask;
+    for (uint64_t p = 0; p < mask.size(); ++p) {
+      if (!mask[p]) continue;
+      const uint64_t x = box.origin[0] + p % box.size[0], y = box.origin[1] + (p / box.size[0]) % box.size[1],
+                     z = box.origin[2] + p / (uint64_t{box.size[0]} * box.size[1]);
+      tile_has_void_[x / edge + fill_count_[0] * (y / edge + uint64_t{fill_count_[1]} * (z / edge))] = 1;
+    }
+    const ArrayBox source{{box.size[0], box.size[1], box.size[2]}, num_dims_};
+    BlockCoder::Coded coded =
+        coder.encode(array, full_resolution, box.first, box.last, box.origin, source, nullptr, run_.threads,
+                     [&](const ArrayBlock& local, int64_t* q) {
+                       std::vector<uint8_t> m(local.box.count());
+                       copyBlockOut(mask.data(), source.size[0], size_t{source.size[0]} * source.size[1], local,
+                                    m.data());
+                       std::copy(m.begin(), m.end(), q);
+                       return std::any_of(m.begin(), m.end(), [](uint8_t v) { return v != 0; });
+                     });
+    return coder.store(array, full_resolution, coded, &mask_);
+  };
+  for (size_t at = 0; at < my_boxes.size() && failed.ok(); at += static_cast<size_t>(threads)) {
+    std::vector<BoxScan> scans(std::min<size_t>(static_cast<size_t>(threads), my_boxes.size() - at));
+    parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[my_boxes[at + i]], &scans[i]); });
+    for (size_t i = 0; i < scans.size() && failed.ok(); ++i) failed = combine(boxes[my_boxes[at + i]], scans[i]);
+    progress(0.05 * static_cast<double>(at + scans.size()) / static_cast<double>(my_boxes.size()));
   }
+  if (Error e = team_.agree(failed); !e.ok()) return e;
+  // The team's figures: every member's range, count and voids.
+  if (team_.members() > 1) {
+    std::vector<double> lo{first_valid ? HUGE_VAL : c_min_}, hi{first_valid ? -HUGE_VAL : c_max_};
+    team_.min(&lo);
+    team_.max(&hi);
+    c_min_ = lo[0];
+    c_max_ = hi[0];
+    std::vector<uint64_t> counts(tile_has_void_.begin(), tile_has_void_.end());
+    counts.push_back(valid_count_);
+    team_.sum(&counts);
+    valid_count_ = counts.back();
+    for (size_t i = 0; i < tile_has_void_.size(); ++i) tile_has_void_[i] = counts[i] != 0;
+    if (valid_count_ == 0) c_min_ = c_max_ = 0;
+  }
+  uint32_t edge_blocks[3], count[3];
+  coder.grid(array, full_resolution, edge_blocks, count);
+  mask_.share(team_, uint64_t{count[0]} * count[1] * count[2]);
   return {};
 }
 
@@ -475,7 +564,7 @@ Error PrecinctStreamEncoder::levelInput(int level, const Piece& piece, std::vect
   if (level > 1) {
     const uint64_t ny = setup_.plan.axis[1].size(level - 1);
     for (uint32_t z = 0; z < piece.n[2]; ++z)
-      if (Error e = level_low_->read(((piece.lo[2] + uint64_t{z}) * ny + piece.lo[1]) * px * sizeof(double),
+      if (Error e = level_low_->readAt(((piece.lo[2] + uint64_t{z}) * ny + piece.lo[1]) * px * sizeof(double),
                                      uint64_t{piece.n[1]} * px * sizeof(double), out->data() + uint64_t{z} * piece.n[1] * px);
           !e.ok())
         return e;
@@ -564,7 +653,7 @@ Error PrecinctStreamEncoder::fillVoids(const uint32_t origin[3], const uint32_t 
         std::vector<double> fill;
         if (fill_at_[tile_index] != UINT64_MAX) {
           fill.resize(fill_count_of_[tile_index]);
-          if (Error e = fills_.read(fill_at_[tile_index], fill.size() * sizeof(double), fill.data()); !e.ok()) return e;
+          if (Error e = fills_.readAt(fill_at_[tile_index], fill.size() * sizeof(double), fill.data()); !e.ok()) return e;
           for (size_t i = 0, k = 0; i < n; ++i)
             if (!valid[i]) tile[i] = fill[k++];
         } else {
@@ -631,18 +720,19 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   uint32_t edge[3];
   for (int a = 0; a < 3; ++a) edge[a] = std::max((1u << wh.precinct_log2) >> resolution[a], kMinBlockEdge);
   const bool top = level == plan.maxLevels();
-  auto next_low = std::make_unique<Spill>();
-  if (!top)
-    if (Error e = next_low->open(); !e.ok()) return e;
+  // The level's low-pass part (at the top: the coarsest band), written by
+  // the members that analyse its pieces, read by every member.
+  Error opened;
+  std::unique_ptr<SharedScratch> next_low = team_.scratch(&opened);
+  if (Error e = team_.agree(opened); !e.ok()) return e;
   uint32_t low_box[3];
   for (int a = 0; a < 3; ++a) low_box[a] = plan.axis[a].size(level);
-  if (top) coarsest_.assign(uint64_t{low_box[0]} * low_box[1] * low_box[2], 0.0);
   const uint32_t px = along_s.box[0];
   std::vector<double> in;
   const uint32_t strips_s = (along_s.lows + edge[s] - 1) / edge[s];
   const uint32_t strips_y = cut_y ? (along_y.lows + edge[1] - 1) / edge[1] : 1;
-  for (uint32_t k = 0; k < strips_s; ++k)
-    for (uint32_t j = 0; j < strips_y; ++j) {
+  // One piece: analysed, its blocks coded, its low-pass lines written.
+  auto analyzePiece = [&](uint32_t k, uint32_t j) -> Error {
       // The piece's kept outputs along s (and y): [k0, k1), [j0, j1).
       const uint32_t k0 = k * edge[s], k1 = std::min(k0 + edge[s], along_s.lows);
       const uint32_t j0 = j * edge[1], j1 = cut_y ? std::min(j0 + edge[1], along_y.lows) : 0;
@@ -692,14 +782,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
           at[1] = j0;
           index[1] = j;
         }
-        if (band.mask == 0) {  // the coarsest band: kept whole
-          for (uint32_t z = 0; z < part[2]; ++z)
-            for (uint32_t y = 0; y < part[1]; ++y) {
-              const double* src = in.data() + ((uint64_t{from[2] + z} * dims[1]) + from[1] + y) * dims[0] + from[0];
-              std::copy(src, src + part[0], coarsest_.data() + ((uint64_t{at[2] + z} * band.size[1]) + at[1] + y) * band.size[0]);
-            }
-          continue;
-        }
+        if (band.mask == 0) continue;  // the coarsest band: the top level's low-pass lines
         quantizers[bi] = bandQuantizer(setup_, bi, delta, integer_);
         const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
         uint32_t block_edge[3], block_count[3];
@@ -732,26 +815,37 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
       });
       for (size_t ti = 0; ti < tasks.size(); ++ti) {
         if (coded[ti].empty()) continue;
-        SpilledArray& band = pass->bands[tasks[ti].band];
-        band.length[tasks[ti].index] = static_cast<uint32_t>(coded[ti].size());
-        if (Error e = pass->blocks->append(coded[ti].data(), coded[ti].size(), &band.offset[tasks[ti].index]); !e.ok())
+        if (Error e = pass->bands[tasks[ti].band].put(tasks[ti].index, coded[ti], pass->blocks.get()); !e.ok())
           return e;
-        pass->any[tasks[ti].band] = true;
       }
       // The low-pass lines (every split axis low) for the next level, at
       // their place in its input.
-      if (!top)
-        for (uint32_t z = 0; z < (cut_y ? lows[2] : 1); ++z)
-          for (uint32_t y = 0; y < lows[1]; ++y) {
-            const uint64_t gz = cut_y ? k0 + z : 0, gy = cut_y ? j0 + y : k0 + y;
-            const double* src = in.data() + ((uint64_t{z} * dims[1]) + y) * dims[0];
-            if (Error e = next_low->writeAt(((gz * low_box[1]) + gy) * low_box[0] * sizeof(double), src,
-                                            low_box[0] * sizeof(double));
-                !e.ok())
-              return e;
-          }
-    }
-  level_low_ = top ? nullptr : std::move(next_low);
+      for (uint32_t z = 0; z < (cut_y ? lows[2] : 1); ++z)
+        for (uint32_t y = 0; y < lows[1]; ++y) {
+          const uint64_t gz = cut_y ? k0 + z : 0, gy = cut_y ? j0 + y : k0 + y;
+          const double* src = in.data() + ((uint64_t{z} * dims[1]) + y) * dims[0];
+          if (Error e = next_low->writeAt(((gz * low_box[1]) + gy) * low_box[0] * sizeof(double), src,
+                                          low_box[0] * sizeof(double));
+              !e.ok())
+            return e;
+        }
+      return {};
+  };
+  Error failed;
+  for (uint32_t k = 0; k < strips_s && failed.ok(); ++k)
+    for (uint32_t j = 0; j < strips_y && failed.ok(); ++j)
+      if (mine(uint64_t{k} * strips_y + j)) failed = analyzePiece(k, j);
+  if (Error e = team_.agree(failed); !e.ok()) return e;
+  if (Error e = next_low->sync(); !e.ok()) return e;
+  // Every band's block lengths on every member.
+  for (size_t bi = 1; bi < setup_.bands.size(); ++bi)
+    if (setup_.bands[bi].level == level) pass->bands[bi].share(team_, blockCount(bi));
+  if (top) {
+    coarsest_.resize(uint64_t{low_box[0]} * low_box[1] * low_box[2]);
+    level_low_ = nullptr;
+    return next_low->readAt(0, coarsest_.size() * sizeof(double), coarsest_.data());
+  }
+  level_low_ = std::move(next_low);
   return {};
 }
 
@@ -763,9 +857,8 @@ Error PrecinctStreamEncoder::codeBands(double delta, BandPass* pass) {
   *pass = BandPass{};
   pass->delta = delta;
   pass->blocks = std::make_unique<Spill>();
-  if (Error e = pass->blocks->open(); !e.ok()) return e;
+  if (Error e = team_.agree(pass->blocks->open()); !e.ok()) return e;
   pass->bands.assign(setup_.bands.size(), {});
-  pass->any.assign(setup_.bands.size(), false);
   coarsest_.clear();
   const int top = setup_.plan.maxLevels();
   for (int level = 1; level <= top; ++level) {
@@ -791,7 +884,7 @@ Error PrecinctStreamEncoder::codeBands(double delta, BandPass* pass) {
   constexpr uint64_t kFraming = kChunkHeaderSize + kChunkCrcSize, kBandHead = 12;
   pass->bytes = kFraming + pass->coarsest.size();
   for (size_t bi = 1; bi < setup_.bands.size(); ++bi)
-    pass->bytes += kFraming + kBandHead + (pass->any[bi] ? pass->bands[bi].codedSize() : 0);
+    pass->bytes += kFraming + kBandHead + (pass->bands[bi].anyCoded() ? pass->bands[bi].codedSize() : 0);
   return {};
 }
 
@@ -837,14 +930,30 @@ Error PrecinctStreamEncoder::searchRate(const GridHeader& h, const Metadata& met
   return {};
 }
 
-// Writes the band chunks (GBND) of `pass` in band order to `stream`.
-Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) {
-  if (Error e = writeChunk(stream, kChunkBand, pass.coarsest); !e.ok()) return e;
+// The number of blocks of a band's array (5.7.6).
+uint64_t PrecinctStreamEncoder::blockCount(size_t band_index) const {
+  const WaveletHeader& wh = setup_.header;
+  const int axis_levels[3] = {wh.levels[0], wh.levels[1], wh.levels[2]};
+  const Band& band = setup_.bands[band_index];
+  int resolution[3];
+  bandResolution(band.level, axis_levels, resolution);
+  uint32_t edge[3], count[3];
+  blockGrid(ArrayBox{{band.size[0], band.size[1], band.size[2]}, num_dims_}, resolution, wh.precinct_log2, edge, count);
+  return uint64_t{count[0]} * count[1] * count[2];
+}
+
+// The chunks after WHDR that the decode pass reads: the mask (with voids),
+// then the band chunks (GBND) of `pass` in band order.
+Error PrecinctStreamEncoder::writeBody(const BandPass& pass, StreamLayout* stream) {
+  if (setup_.header.hasMask())
+    if (Error e = stream->blockedChunk(kChunkNodataMask, {}, &mask_, &blocks_); !e.ok()) return e;
+  if (Error e = stream->chunk(kChunkBand, pass.coarsest); !e.ok()) return e;
   for (size_t bi = 1; bi < setup_.bands.size(); ++bi) {
+    const bool any = pass.bands[bi].anyCoded();
     const std::vector<uint8_t> head =
-        bandChunkHead(static_cast<uint16_t>(bi), pass.any[bi] ? bandQuantizer(setup_, bi, pass.delta, integer_).step : 0);
-    Error e = pass.any[bi] ? writeBlockedChunk(stream, kChunkBand, head, pass.bands[bi], pass.blocks.get())
-                           : writeChunk(stream, kChunkBand, head);
+        bandChunkHead(static_cast<uint16_t>(bi), any ? bandQuantizer(setup_, bi, pass.delta, integer_).step : 0);
+    Error e = any ? stream->blockedChunk(kChunkBand, head, &pass.bands[bi], pass.blocks.get())
+                  : stream->chunk(kChunkBand, head);
     if (!e.ok()) return e;
   }
   return {};
@@ -855,7 +964,8 @@ Error PrecinctStreamEncoder::writeBands(const BandPass& pass, ByteSink* stream) 
 // parallel: the error figures and, with `residual_step`, the residual layer's
 // blocks. A box holds about 2^19 samples, so that the region decoder's
 // windows stay small whatever the grid's width.
-Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, ErrorTally* tally) {
+Error PrecinctStreamEncoder::decodePass(SharedScratch* prefix, uint64_t prefix_size, uint32_t residual_step,
+                                        ErrorTally* tally) {
   const ArrayBox array{{size_[0], size_[1], size_[2]}, num_dims_};
   const int full_resolution[3] = {0, 0, 0};
   BlockCoder coder(setup_.header, &blocks_);
@@ -875,7 +985,7 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
   auto decodeBox = [&](BoxResult& b) {
     const uint32_t* origin = b.at.origin;
     const uint32_t* size = b.at.size;
-    SpillSource source(prefix);
+    ScratchSource source(prefix, prefix_size);
     GridRegion region;
     for (int a = 0; a < 3; ++a) {
       region.lo[a] = origin[a];
@@ -932,25 +1042,44 @@ Error PrecinctStreamEncoder::decodePass(Spill* prefix, uint32_t residual_step, E
                                 return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
                               });
   };
-  // A batch of boxes at a time, decoded in parallel, added in box order.
+  // This member's boxes, a batch at a time, decoded in parallel.
+  std::vector<size_t> my_boxes;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (mine(i)) my_boxes.push_back(i);
+  std::vector<double> sse(boxes.size(), 0.0), max_abs(boxes.size(), 0.0);
   const size_t batch = 2 * static_cast<size_t>(threads);
-  for (size_t at = 0; at < boxes.size(); at += batch) {
-    std::vector<BoxResult> results(std::min(batch, boxes.size() - at));
-    for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[at + i];
+  Error failed;
+  for (size_t at = 0; at < my_boxes.size() && failed.ok(); at += batch) {
+    std::vector<BoxResult> results(std::min(batch, my_boxes.size() - at));
+    for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[my_boxes[at + i]];
     parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
-    for (BoxResult& b : results) {
-      if (!b.error.ok()) return b.error;
-      tally->sse += b.sse;
-      tally->max_abs = std::max(tally->max_abs, b.max_abs);
-      if (residual_step)
-        if (Error e = coder.store(array, full_resolution, b.residual, &residual_); !e.ok()) return e;
+    for (size_t i = 0; i < results.size() && failed.ok(); ++i) {
+      const BoxResult& b = results[i];
+      failed = b.error;
+      sse[my_boxes[at + i]] = b.sse;
+      max_abs[my_boxes[at + i]] = b.max_abs;
+      if (failed.ok() && residual_step) failed = coder.store(array, full_resolution, b.residual, &residual_);
     }
-    progress(0.7 + 0.3 * static_cast<double>(at + results.size()) / static_cast<double>(boxes.size()));
+    progress(0.7 + 0.3 * static_cast<double>(at + results.size()) / static_cast<double>(my_boxes.size()));
+  }
+  if (Error e = team_.agree(failed); !e.ok()) return e;
+  // Every box's figures on every member (each box was decoded by one; the
+  // others hold 0), added in box order whatever the team and thread count.
+  team_.max(&sse);
+  team_.max(&max_abs);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    tally->sse += sse[i];
+    tally->max_abs = std::max(tally->max_abs, max_abs[i]);
+  }
+  if (residual_step) {
+    uint32_t edge[3], count[3];
+    coder.grid(array, full_resolution, edge, count);
+    residual_.share(team_, uint64_t{count[0]} * count[1] * count[2]);
   }
   return {};
 }
 
-Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, WaveletEncodeReport* report) {
+Error PrecinctStreamEncoder::encode(const Metadata& metadata, SharedScratch& out, WaveletEncodeReport* report) {
   GridHeader h = header_;
   h.coding = GridCoding::kWavelet;
   if (std::string problem = gridHeaderProblem(h); !problem.empty()) return invalid("grid_header", problem);
@@ -974,7 +1103,7 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
     return invalid("max_error", "error bounds and lossless coding need integer samples in this version");
   const uint32_t d = options_.max_error >= 0 ? static_cast<uint32_t>(std::floor(options_.max_error)) : 0;
   if (options_.max_error >= 0 && d > (kMaxResidualStep - 1) / 2) return invalid("max_error", "bound above 524287");
-  if (Error e = blocks_.open(); !e.ok()) return e;
+  if (Error e = team_.agree(blocks_.open()); !e.ok()) return e;
   setup_.header.entropy_mode = options_.entropy_mode;
   setup_.header.precinct_log2 = static_cast<uint8_t>(options_.precinct_log2);
   progress(0);
@@ -994,31 +1123,32 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
     if (Error e = codeBands(delta, &pass_); !e.ok()) return e;
   }
   // The stream without meta and residual, to decode.
-  Spill prefix;
-  if (Error e = prefix.open(); !e.ok()) return e;
+  Error opened;
+  std::unique_ptr<SharedScratch> prefix = team_.scratch(&opened);
+  if (Error e = team_.agree(opened); !e.ok()) return e;
   ContainerWriter head;
   head.addChunk(kChunkGridHeader, serializeGridHeader(h));
   head.addChunk(kChunkWaveletHeader, serializeWaveletHeader(setup_.header));
-  const uint64_t prefix_head = head.image().size();
-  if (Error e = prefix.append(head.image().data(), head.image().size()); !e.ok()) return e;
-  if (setup_.header.hasMask())
-    if (Error e = writeBlockedChunk(&prefix, kChunkNodataMask, {}, mask_, &blocks_); !e.ok()) return e;
-  if (Error e = writeBands(pass_, &prefix); !e.ok()) return e;
-  const uint64_t prefix_body_end = prefix.size();
-  if (Error e = writeChunk(&prefix, kChunkEnd, {}); !e.ok()) return e;
+  StreamLayout prefix_layout(team_, prefix.get(), 0);
+  Error written_prefix = prefix_layout.raw(head.image());
+  if (written_prefix.ok()) written_prefix = writeBody(pass_, &prefix_layout);
+  if (written_prefix.ok()) written_prefix = prefix_layout.chunk(kChunkEnd, {});
+  if (Error e = team_.agree(written_prefix); !e.ok()) return e;
+  if (Error e = prefix->sync(); !e.ok()) return e;
   progress(0.7);
   ErrorTally tally;
   tally.valid = valid_count_;
   tally.lo = c_min_;
   tally.hi = c_max_;
   tally.levels = top;
-  if (Error e = decodePass(&prefix, residual_step, &tally); !e.ok()) return e;
+  if (Error e = decodePass(prefix.get(), prefix_layout.end(), residual_step, &tally); !e.ok()) return e;
+  prefix.reset();
   if (options_.max_error >= 0 && tally.max_abs > d)
     return Error{Status::kInvalidArgument, 0, "verify",
                  "internal error: decoded error " + std::to_string(tally.max_abs) + " above the bound " +
                      std::to_string(d)};
-  // The stream: GHDR, meta with the error figures, WHDR, then the prefix's
-  // chunks, the residual, MEND.
+  // The stream: GHDR, meta with the error figures, WHDR, the mask and the
+  // bands as in the prefix, the residual, MEND.
   WaveletEncodeReport rep;
   const Metadata recorded = tally.record(metadata, options_, &rep);
   WaveletHeader wh = setup_.header;
@@ -1027,26 +1157,20 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
   final_head.addChunk(kChunkGridHeader, serializeGridHeader(h));
   final_head.addChunk(kChunkMeta, serializeMetadata(recorded));
   final_head.addChunk(kChunkWaveletHeader, serializeWaveletHeader(wh));
-  uint64_t written = final_head.image().size();
-  if (!out.write(final_head.image().data(), final_head.image().size())) return ioFailure("cannot write the stream");
-  std::vector<uint8_t> buffer(1 << 20);
-  for (uint64_t at = prefix_head; at < prefix_body_end;) {
-    const size_t n = static_cast<size_t>(std::min<uint64_t>(buffer.size(), prefix_body_end - at));
-    if (Error e = prefix.read(at, n, buffer.data()); !e.ok()) return e;
-    if (!out.write(buffer.data(), n)) return ioFailure("cannot write the stream");
-    at += n;
-  }
-  written += prefix_body_end - prefix_head;
-  if (residual_step) {
+  StreamLayout layout(team_, &out, 0);
+  Error written = layout.raw(final_head.image());
+  if (written.ok()) written = writeBody(pass_, &layout);
+  if (written.ok() && residual_step) {
     std::vector<uint8_t> res_head;
     ByteWriter(&res_head).u32(residual_step);
-    if (Error e = writeBlockedChunk(&out, kChunkResidual, res_head, residual_, &blocks_); !e.ok()) return e;
-    written += kChunkHeaderSize + res_head.size() + residual_.codedSize() + kChunkCrcSize;
+    written = layout.blockedChunk(kChunkResidual, res_head, &residual_, &blocks_);
   }
-  if (Error e = writeChunk(&out, kChunkEnd, {}); !e.ok()) return e;
-  written += kChunkHeaderSize + kChunkCrcSize;
-  rep.bytes = written;
-  rep.bits_per_sample = 8.0 * static_cast<double>(written) / static_cast<double>(h.sampleCount());
+  if (written.ok()) written = layout.chunk(kChunkEnd, {});
+  if (Error e = team_.agree(written); !e.ok()) return e;
+  if (Error e = out.sync(); !e.ok()) return e;
+  const uint64_t written_bytes = layout.end();
+  rep.bytes = written_bytes;
+  rep.bits_per_sample = 8.0 * static_cast<double>(written_bytes) / static_cast<double>(h.sampleCount());
   rep.base_step = pass_.delta;
   rep.residual_step = residual_step;
   rep.iterations = iterations_;
@@ -1060,7 +1184,16 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, ByteSink& out, Wav
 Error encodePrecinctGridFromReader(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
                                    const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
                                    ByteSink& out, WaveletEncodeReport* report) {
-  PrecinctStreamEncoder encoder(header, reader, options, run);
+  SoloTeam team;
+  InOrderScratch stream(&out);
+  PrecinctStreamEncoder encoder(header, reader, options, run, team);
+  return encoder.encode(metadata, stream, report);
+}
+
+Error encodePrecinctGridAsTeam(const GridHeader& header, GridBoxReader& reader, const Metadata& metadata,
+                               const WaveletEncodeOptions& options, const PrecinctStreamOptions& run,
+                               EncodeTeam& team, SharedScratch& out, WaveletEncodeReport* report) {
+  PrecinctStreamEncoder encoder(header, reader, options, run, team);
   return encoder.encode(metadata, out, report);
 }
 
