@@ -30,24 +30,59 @@ void broadcast(std::string* text, int root) {
   if (n) MPI_Bcast(text->data(), static_cast<int>(n), MPI_CHAR, root, MPI_COMM_WORLD);
 }
 
+// The next item is a counter in rank 0's memory, taken with an atomic
+// fetch-and-add (MPI one-sided communication, passive target).
+class MpiQueue : public WorkQueue {
+ public:
+  explicit MpiQueue(uint64_t n) : n_(n) {
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Win_allocate(rank == 0 ? sizeof(uint64_t) : 0, sizeof(uint64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &next_,
+                     &window_);
+    if (rank == 0) *next_ = 0;
+    MPI_Barrier(MPI_COMM_WORLD);  // the counter is set before anyone takes
+    MPI_Win_lock_all(0, window_);
+  }
+  ~MpiQueue() override {
+    MPI_Win_unlock_all(window_);
+    MPI_Win_free(&window_);
+  }
+  uint64_t take() override {
+    const uint64_t one = 1;
+    uint64_t got = 0;
+    MPI_Fetch_and_op(&one, &got, MPI_UINT64_T, 0, 0, MPI_SUM, window_);
+    MPI_Win_flush(0, window_);
+    return std::min(got, n_);
+  }
+
+ private:
+  uint64_t n_;
+  uint64_t* next_ = nullptr;
+  MPI_Win window_ = MPI_WIN_NULL;
+};
+
 }  // namespace
 
-std::unique_ptr<MpiFile> MpiFile::open(const std::string& path, bool remove_on_close, Error* error) {
+std::unique_ptr<MpiFile> MpiFile::open(const std::string& path, bool scratch, Error* error) {
   MPI_File file = MPI_FILE_NULL;
-  int mode = MPI_MODE_CREATE | MPI_MODE_RDWR;
-  if (remove_on_close) mode |= MPI_MODE_DELETE_ON_CLOSE;
-  if (MPI_File_open(MPI_COMM_WORLD, path.c_str(), mode, MPI_INFO_NULL, &file) != MPI_SUCCESS) {
+  if (MPI_File_open(MPI_COMM_WORLD, path.c_str(), MPI_MODE_CREATE | MPI_MODE_RDWR, MPI_INFO_NULL, &file) !=
+      MPI_SUCCESS) {
     *error = ioFailure(path + ": cannot open with MPI-IO");
     return nullptr;
   }
   *error = {};
-  return std::unique_ptr<MpiFile>(new MpiFile(file));
+  return std::unique_ptr<MpiFile>(new MpiFile(file, path, scratch));
 }
 
 MpiFile::~MpiFile() { close(); }
 
 void MpiFile::close() {
-  if (file_ != MPI_FILE_NULL) MPI_File_close(&file_);
+  if (file_ == MPI_FILE_NULL) return;
+  MPI_File_close(&file_);
+  if (!scratch_) return;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) MPI_File_delete(path_.c_str(), MPI_INFO_NULL);
 }
 
 Error MpiFile::writeAt(uint64_t offset, const void* data, size_t n) {
@@ -81,10 +116,11 @@ Error MpiFile::readAt(uint64_t offset, size_t n, void* out) {
 }
 
 Error MpiFile::sync() {
-  const bool synced = MPI_File_sync(file_) == MPI_SUCCESS;
+  if (file_ != MPI_FILE_NULL) MPI_File_close(&file_);
   MPI_Barrier(MPI_COMM_WORLD);
-  const bool again = MPI_File_sync(file_) == MPI_SUCCESS;
-  return synced && again ? Error{} : ioFailure("MPI_File_sync failed");
+  return MPI_File_open(MPI_COMM_WORLD, path_.c_str(), MPI_MODE_RDWR, MPI_INFO_NULL, &file_) == MPI_SUCCESS
+             ? Error{}
+             : ioFailure(path_ + ": cannot open again with MPI-IO");
 }
 
 MpiTeam::MpiTeam(std::string directory) : directory_(std::move(directory)) {
@@ -119,5 +155,7 @@ std::unique_ptr<SharedScratch> MpiTeam::scratch(Error* error) {
       directory_ + "/.mrsv-mpi-scratch-" + std::to_string(job_) + "-" + std::to_string(scratches_++);
   return MpiFile::open(path, true, error);
 }
+
+std::unique_ptr<WorkQueue> MpiTeam::queue(uint64_t n) { return std::make_unique<MpiQueue>(n); }
 
 }  // namespace mrsv::mpi

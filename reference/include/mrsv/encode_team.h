@@ -23,6 +23,14 @@ class SharedScratch {
   virtual Error sync() = 0;
 };
 
+// Items 0 to n - 1 handed out one at a time, each to the member that asks
+// first: work of uneven cost shared evenly.
+class WorkQueue {
+ public:
+  virtual ~WorkQueue() = default;  // collective
+  virtual uint64_t take() = 0;     // the next item, or n when none is left
+};
+
 class EncodeTeam {
  public:
   virtual ~EncodeTeam() = default;
@@ -37,6 +45,8 @@ class EncodeTeam {
   virtual void max(std::vector<double>* values) = 0;
   // Collective: a new, empty scratch file, removed when released.
   virtual std::unique_ptr<SharedScratch> scratch(Error* error) = 0;
+  // Collective: a queue of n items.
+  virtual std::unique_ptr<WorkQueue> queue(uint64_t n) = 0;
 };
 
 }  // namespace mrsv

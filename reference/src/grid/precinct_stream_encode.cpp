@@ -115,6 +115,14 @@ class SoloTeam : public EncodeTeam {
     *error = spill->open();
     return spill;
   }
+  std::unique_ptr<WorkQueue> queue(uint64_t n) override { return std::make_unique<Counter>(n); }
+
+ private:
+  struct Counter : WorkQueue {
+    explicit Counter(uint64_t n) : n(n) {}
+    uint64_t take() override { return next < n ? next++ : n; }
+    uint64_t n, next = 0;
+  };
 };
 
 // A stream written by a team of one, in order, as the positioned writes of
@@ -364,8 +372,6 @@ class PrecinctStreamEncoder {
   void progress(double done) {
     if (run_.progress) run_.progress(std::min(done, 1.0));
   }
-  // The pieces, boxes and blocks of a team are dealt round-robin.
-  bool mine(uint64_t item) const { return item % static_cast<uint64_t>(team_.members()) == uint64_t(team_.member()); }
   uint64_t blockCount(size_t band) const;
 
   const GridHeader header_;
@@ -432,6 +438,13 @@ std::vector<PrecinctBox> precinctBoxes(int num_dims, const uint32_t grid[3], int
   return boxes;
 }
 
+// Up to `n` items taken from `queue` (fewer at its end), in the order taken.
+std::vector<size_t> takeItems(WorkQueue& queue, size_t n, size_t total) {
+  std::vector<size_t> items;
+  for (uint64_t i; items.size() < n && (i = queue.take()) < total;) items.push_back(static_cast<size_t>(i));
+  return items;
+}
+
 // Pass 1, a box of precincts at a time: the valid samples' range and count,
 // which fill tiles hold voids, and the mask's blocks.
 Error PrecinctStreamEncoder::scan() {
@@ -479,12 +492,9 @@ Error PrecinctStreamEncoder::scan() {
       ++r->valid;
     }
   };
-  // This member's boxes, a batch read at once, one per thread; their figures
-  // combine in box order (min, max, sums, the first bad sample), whatever
-  // the count.
-  std::vector<size_t> my_boxes;
-  for (size_t i = 0; i < boxes.size(); ++i)
-    if (mine(i)) my_boxes.push_back(i);
+  // Boxes taken from the team's queue, a batch read at once, one per thread;
+  // their figures combine in the order taken (min, max, sums: the same
+  // whatever the order; the first bad sample found).
   auto combine = [&](const PrecinctBox& box, const BoxScan& r) -> Error {
     if (!r.error.ok()) return r.error;
     if (r.bad != UINT64_MAX) {
@@ -520,11 +530,16 @@ Error PrecinctStreamEncoder::scan() {
                      });
     return coder.store(array, full_resolution, coded, &mask_);
   };
-  for (size_t at = 0; at < my_boxes.size() && failed.ok(); at += static_cast<size_t>(threads)) {
-    std::vector<BoxScan> scans(std::min<size_t>(static_cast<size_t>(threads), my_boxes.size() - at));
-    parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[my_boxes[at + i]], &scans[i]); });
-    for (size_t i = 0; i < scans.size() && failed.ok(); ++i) failed = combine(boxes[my_boxes[at + i]], scans[i]);
-    progress(0.05 * static_cast<double>(at + scans.size()) / static_cast<double>(my_boxes.size()));
+  {
+    std::unique_ptr<WorkQueue> queue = team_.queue(boxes.size());
+    while (failed.ok()) {
+      const std::vector<size_t> batch = takeItems(*queue, static_cast<size_t>(threads), boxes.size());
+      if (batch.empty()) break;
+      std::vector<BoxScan> scans(batch.size());
+      parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[batch[i]], &scans[i]); });
+      for (size_t i = 0; i < scans.size() && failed.ok(); ++i) failed = combine(boxes[batch[i]], scans[i]);
+      progress(0.05 * static_cast<double>(batch.back() + 1) / static_cast<double>(boxes.size()));
+    }
   }
   if (Error e = team_.agree(failed); !e.ok()) return e;
   // The team's figures: every member's range, count and voids.
@@ -831,10 +846,15 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
         }
       return {};
   };
+  // The pieces taken from the team's queue one at a time (each lifted by
+  // this member's threads).
   Error failed;
-  for (uint32_t k = 0; k < strips_s && failed.ok(); ++k)
-    for (uint32_t j = 0; j < strips_y && failed.ok(); ++j)
-      if (mine(uint64_t{k} * strips_y + j)) failed = analyzePiece(k, j);
+  {
+    const uint64_t pieces = uint64_t{strips_s} * strips_y;
+    std::unique_ptr<WorkQueue> queue = team_.queue(pieces);
+    for (uint64_t p; failed.ok() && (p = queue->take()) < pieces;)
+      failed = analyzePiece(static_cast<uint32_t>(p / strips_y), static_cast<uint32_t>(p % strips_y));
+  }
   if (Error e = team_.agree(failed); !e.ok()) return e;
   if (Error e = next_low->sync(); !e.ok()) return e;
   // Every band's block lengths on every member.
@@ -1042,25 +1062,26 @@ Error PrecinctStreamEncoder::decodePass(SharedScratch* prefix, uint64_t prefix_s
                                 return std::any_of(q, q + local.box.count(), [](int64_t v) { return v; });
                               });
   };
-  // This member's boxes, a batch at a time, decoded in parallel.
-  std::vector<size_t> my_boxes;
-  for (size_t i = 0; i < boxes.size(); ++i)
-    if (mine(i)) my_boxes.push_back(i);
+  // Boxes taken from the team's queue, a batch at a time, decoded in parallel.
   std::vector<double> sse(boxes.size(), 0.0), max_abs(boxes.size(), 0.0);
-  const size_t batch = 2 * static_cast<size_t>(threads);
   Error failed;
-  for (size_t at = 0; at < my_boxes.size() && failed.ok(); at += batch) {
-    std::vector<BoxResult> results(std::min(batch, my_boxes.size() - at));
-    for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[my_boxes[at + i]];
-    parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
-    for (size_t i = 0; i < results.size() && failed.ok(); ++i) {
-      const BoxResult& b = results[i];
-      failed = b.error;
-      sse[my_boxes[at + i]] = b.sse;
-      max_abs[my_boxes[at + i]] = b.max_abs;
-      if (failed.ok() && residual_step) failed = coder.store(array, full_resolution, b.residual, &residual_);
+  {
+    std::unique_ptr<WorkQueue> queue = team_.queue(boxes.size());
+    while (failed.ok()) {
+      const std::vector<size_t> batch = takeItems(*queue, 2 * static_cast<size_t>(threads), boxes.size());
+      if (batch.empty()) break;
+      std::vector<BoxResult> results(batch.size());
+      for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[batch[i]];
+      parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
+      for (size_t i = 0; i < results.size() && failed.ok(); ++i) {
+        const BoxResult& b = results[i];
+        failed = b.error;
+        sse[batch[i]] = b.sse;
+        max_abs[batch[i]] = b.max_abs;
+        if (failed.ok() && residual_step) failed = coder.store(array, full_resolution, b.residual, &residual_);
+      }
+      progress(0.7 + 0.3 * static_cast<double>(batch.back() + 1) / static_cast<double>(boxes.size()));
     }
-    progress(0.7 + 0.3 * static_cast<double>(at + results.size()) / static_cast<double>(my_boxes.size()));
   }
   if (Error e = team_.agree(failed); !e.ok()) return e;
   // Every box's figures on every member (each box was decoded by one; the
