@@ -76,6 +76,7 @@ const char kHelp[] =
     "Exit status: 0 done, 1 invalid input, 2 usage error, 3 file error.\n";
 
 int rank = 0, ranks = 1;
+bool serialized = false;  // MPI takes calls from any thread, one at a time (--threads above 1)
 // MPI_Wtime() once every rank has started: the status lines give the time
 // from there, the ranks' own work, without the launcher's and MPI_Init's
 // start-up (a fixed 0.1 to 0.4 s that would hide the speed-up of small jobs).
@@ -213,6 +214,8 @@ int runEncode(int argc, char** argv) {
     if (!cli::parseUint64(args.value("threads"), &number) || number < 1 || number > 1024)
       return agree(cli::kExitUsage, "--threads must be 1 to 1024");
     tiled.threads = static_cast<int>(number);
+    if (tiled.threads > 1 && !serialized)
+      return agree(cli::kExitUsage, "--threads above 1 needs an MPI library with MPI_THREAD_SERIALIZED");
   }
   WaveletEncodeOptions options;
   options.max_error = 0;
@@ -458,7 +461,11 @@ int runDecode(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   mrsv::cli::keepTileBuffersInTheHeap();
-  MPI_Init(&argc, &argv);
+  // Serialized: the threads of a rank take turns at MPI-IO and the work
+  // queue (each behind a mutex).
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
+  mrsv::mpi::serialized = provided >= MPI_THREAD_SERIALIZED;
   MPI_Comm_rank(MPI_COMM_WORLD, &mrsv::mpi::rank);
   MPI_Comm_size(MPI_COMM_WORLD, &mrsv::mpi::ranks);
   MPI_Barrier(MPI_COMM_WORLD);

@@ -86,6 +86,7 @@ void MpiFile::close() {
 }
 
 Error MpiFile::writeAt(uint64_t offset, const void* data, size_t n) {
+  std::lock_guard<std::mutex> hold(lock_);
   const auto* p = static_cast<const uint8_t*>(data);
   while (n > 0) {
     const int part = static_cast<int>(std::min<uint64_t>(n, kMaxCall));
@@ -100,6 +101,7 @@ Error MpiFile::writeAt(uint64_t offset, const void* data, size_t n) {
 }
 
 Error MpiFile::readAt(uint64_t offset, size_t n, void* out) {
+  std::lock_guard<std::mutex> hold(lock_);
   auto* p = static_cast<uint8_t*>(out);
   while (n > 0) {
     const int part = static_cast<int>(std::min<uint64_t>(n, kMaxCall));

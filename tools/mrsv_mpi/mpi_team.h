@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ class MpiFile : public SharedScratch {
   MPI_File file_;
   std::string path_;
   bool scratch_;
+  std::mutex lock_;  // threads of a rank read at once; MPI is initialised for serialized calls
 };
 
 class MpiTeam : public EncodeTeam {

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <unistd.h>
 
 #include "common/byte_writer.h"
@@ -438,11 +439,23 @@ std::vector<PrecinctBox> precinctBoxes(int num_dims, const uint32_t grid[3], int
   return boxes;
 }
 
-// Up to `n` items taken from `queue` (fewer at its end), in the order taken.
-std::vector<size_t> takeItems(WorkQueue& queue, size_t n, size_t total) {
-  std::vector<size_t> items;
-  for (uint64_t i; items.size() < n && (i = queue.take()) < total;) items.push_back(static_cast<size_t>(i));
-  return items;
+// The `n` items of `queue`, each taken by the first of `threads` workers to
+// be free and passed to `work(item)`, until the queue is empty or `stop()`
+// (called under `lock`, as every take is: the team's queue is not called
+// from two threads at once) is true. No barrier between items: boxes of
+// uneven cost keep every worker busy.
+template <typename Stop, typename Work>
+void drainQueue(WorkQueue& queue, uint64_t n, int threads, std::mutex& lock, const Stop& stop, const Work& work) {
+  parallelFor(static_cast<uint64_t>(std::max(threads, 1)), threads, [&](uint64_t) {
+    for (;;) {
+      uint64_t item = n;
+      {
+        std::lock_guard<std::mutex> hold(lock);
+        if (stop() || (item = queue.take()) >= n) return;
+      }
+      work(item);
+    }
+  });
 }
 
 // Pass 1, a box of precincts at a time: the valid samples' range and count,
@@ -531,15 +544,23 @@ Error PrecinctStreamEncoder::scan() {
     return coder.store(array, full_resolution, coded, &mask_);
   };
   {
+    // A failure names the first failing box in box order (boxes are taken
+    // in order and every box taken is finished).
     std::unique_ptr<WorkQueue> queue = team_.queue(boxes.size());
-    while (failed.ok()) {
-      const std::vector<size_t> batch = takeItems(*queue, static_cast<size_t>(threads), boxes.size());
-      if (batch.empty()) break;
-      std::vector<BoxScan> scans(batch.size());
-      parallelFor(scans.size(), threads, [&](uint64_t i) { scanBox(boxes[batch[i]], &scans[i]); });
-      for (size_t i = 0; i < scans.size() && failed.ok(); ++i) failed = combine(boxes[batch[i]], scans[i]);
-      progress(0.05 * static_cast<double>(batch.back() + 1) / static_cast<double>(boxes.size()));
-    }
+    std::mutex lock;
+    uint64_t failed_box = UINT64_MAX, scanned = 0;
+    drainQueue(*queue, boxes.size(), threads, lock, [&] { return !failed.ok(); }, [&](uint64_t i) {
+      BoxScan r;
+      scanBox(boxes[i], &r);
+      std::lock_guard<std::mutex> hold(lock);
+      if (!failed.ok() && failed_box == UINT64_MAX) return;  // the scratch file failed to open
+      Error e = i < failed_box ? combine(boxes[i], r) : Error{};
+      if (!e.ok()) {
+        failed = e;
+        failed_box = i;
+      }
+      progress(0.05 * static_cast<double>(++scanned) / static_cast<double>(boxes.size()));
+    });
   }
   if (Error e = team_.agree(failed); !e.ok()) return e;
   // The team's figures: every member's range, count and voids.
@@ -863,7 +884,7 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   if (top) {
     coarsest_.resize(uint64_t{low_box[0]} * low_box[1] * low_box[2]);
     level_low_ = nullptr;
-    return next_low->readAt(0, coarsest_.size() * sizeof(double), coarsest_.data());
+    return team_.agree(next_low->readAt(0, coarsest_.size() * sizeof(double), coarsest_.data()));
   }
   level_low_ = std::move(next_low);
   return {};
@@ -1067,21 +1088,20 @@ Error PrecinctStreamEncoder::decodePass(SharedScratch* prefix, uint64_t prefix_s
   Error failed;
   {
     std::unique_ptr<WorkQueue> queue = team_.queue(boxes.size());
-    while (failed.ok()) {
-      const std::vector<size_t> batch = takeItems(*queue, 2 * static_cast<size_t>(threads), boxes.size());
-      if (batch.empty()) break;
-      std::vector<BoxResult> results(batch.size());
-      for (size_t i = 0; i < results.size(); ++i) results[i].at = boxes[batch[i]];
-      parallelFor(results.size(), threads, [&](uint64_t i) { decodeBox(results[i]); });
-      for (size_t i = 0; i < results.size() && failed.ok(); ++i) {
-        const BoxResult& b = results[i];
-        failed = b.error;
-        sse[batch[i]] = b.sse;
-        max_abs[batch[i]] = b.max_abs;
-        if (failed.ok() && residual_step) failed = coder.store(array, full_resolution, b.residual, &residual_);
-      }
-      progress(0.7 + 0.3 * static_cast<double>(batch.back() + 1) / static_cast<double>(boxes.size()));
-    }
+    std::mutex lock;
+    uint64_t decoded = 0;
+    drainQueue(*queue, boxes.size(), threads, lock, [&] { return !failed.ok(); }, [&](uint64_t i) {
+      BoxResult b;
+      b.at = boxes[i];
+      decodeBox(b);
+      std::lock_guard<std::mutex> hold(lock);
+      if (!failed.ok()) return;
+      failed = b.error;
+      sse[i] = b.sse;
+      max_abs[i] = b.max_abs;
+      if (failed.ok() && residual_step) failed = coder.store(array, full_resolution, b.residual, &residual_);
+      progress(0.7 + 0.3 * static_cast<double>(++decoded) / static_cast<double>(boxes.size()));
+    });
   }
   if (Error e = team_.agree(failed); !e.ok()) return e;
   // Every box's figures on every member (each box was decoded by one; the
