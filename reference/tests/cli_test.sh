@@ -326,5 +326,24 @@ expect 3 "$mrsv" encode --dims 129,128 --type int16 --tile 64 --out-of-core "$cr
 expect 1 "$mrsv" decode --region 1,1,9,9 "$vectors/tiled_invalid/index_length_disagrees.mrsv" "$work/x.raw"; stderr_has "E208"; one_line_stderr
 if [ ! -e "$work/x.mrsv" ] && [ ! -e "$work/x.raw" ]; then ok; else bad "a failed tiled command left an output"; fi
 
+# A grid in precincts decoded whole to raw or NRRD goes by rows of precincts
+# on the threads: the samples of the whole decoder (the canonical output's),
+# for any thread count; a damaged stream gives the whole decoder's error.
+expect 0 "$mrsv" encode --quiet --dims 128,128 --type int16 --precinct 16 --step 3 "$crop" "$work/p.mrsv"
+expect 0 "$mrsv" decode --quiet --canonical "$work/p.mrsv" "$work/p.canon"
+for t in 1 3; do
+  expect 0 "$mrsv" decode --quiet --threads $t "$work/p.mrsv" "$work/p$t.raw"
+  if tail -c 32768 "$work/p.canon" | cmp -s - "$work/p$t.raw"; then ok; else bad "precinct rows on $t threads differ"; fi
+done
+expect 0 "$mrsv" decode --quiet "$work/p.mrsv" "$work/p.nrrd"
+if tail -c 32768 "$work/p.nrrd" | cmp -s - "$work/p1.raw"; then ok; else bad "precinct rows to NRRD differ"; fi
+cp "$work/p.mrsv" "$work/pd.mrsv"
+printf '\x55' | dd of="$work/pd.mrsv" bs=1 seek=$(( $(stat -c %s "$work/p.mrsv") / 2 )) conv=notrunc 2>/dev/null
+expect 1 "$mrsv" decode --canonical "$work/pd.mrsv" "$work/x.canon"; cp "$work/stderr" "$work/stderr.whole"
+expect 1 "$mrsv" decode "$work/pd.mrsv" "$work/x.raw"; one_line_stderr
+if [ "$(sed 's/x\.raw/X/' "$work/stderr")" = "$(sed 's/x\.canon/X/' "$work/stderr.whole")" ]; then ok
+else bad "a damaged precinct stream: $(cat "$work/stderr") against $(cat "$work/stderr.whole")"; fi
+if [ ! -e "$work/x.raw" ]; then ok; else bad "a failed precinct decode left an output"; fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

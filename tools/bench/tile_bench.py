@@ -9,7 +9,8 @@
      region (speed ratio, bytes read), against OpenJPEG's tiled JPEG 2000 at the
      same rate decoded with opj_decompress -d on the same window. The same grid in
      precincts of 256^2 (spec 5.7.6): out-of-core encode (peak memory, 1 and 2
-     threads), whole decode, the region, OpenJPEG.
+     threads), whole decode, the region, OpenJPEG. mrsv-mpi on 1 and 2 ranks, tiles
+     and precincts (speed-up, same bytes as mrsv encode).
   2. Rate-distortion at 1 bit per sample, tiled (256^2, and 64^3 bricks for a CT
      volume) and in precincts of the same size (spec 5.7.6) against neither, per grid.
 
@@ -88,6 +89,37 @@ def best(cmd, repeat=3):
 def psnr_of(stderr):
     m = re.search(r"PSNR ([0-9.inf]+) dB", stderr)
     return float(m.group(1)) if m else float("nan")
+
+
+def mpi_speedup(mpi, tmp, label, options, raw, reference):
+    """mrsv-mpi encode and decode on 1 and 2 ranks: the wall time of mpirun
+    and the ranks' own time (mrsv-mpi's status line: from the moment every
+    rank has started, without mpirun's and MPI_Init's start-up)."""
+    def ranks_time(stderr):
+        m = re.search(r"ranks, ([0-9.]+) s", stderr)
+        return float(m.group(1)) if m else float("nan")
+    mpirun = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np"]
+    times, inner = {}, {}
+    for np_ in (1, 2):
+        times[np_], _, err = run([*mpirun, str(np_), mpi, "encode", *options, raw,
+                                  os.path.join(tmp, f"mpi{np_}.mrsv")])
+        inner[np_] = ranks_time(err)
+    same = open(os.path.join(tmp, "mpi2.mrsv"), "rb").read() == open(reference, "rb").read()
+    print(f"mrsv-mpi encode, {label}: {times[1]:.1f} s on 1 rank, {times[2]:.1f} s on 2 (speed-up "
+          f"{times[1] / times[2]:.2f}x; the ranks' own time {inner[1]:.1f} s and {inner[2]:.1f} s, "
+          f"{inner[1] / inner[2]:.2f}x); same stream as mrsv encode: {same}")
+    dec, dec_inner = {}, {}
+    for np_ in (1, 2):
+        runs = [run([*mpirun, str(np_), mpi, "decode", os.path.join(tmp, "mpi2.mrsv"),
+                     os.path.join(tmp, "mpi.raw")]) for _ in range(2)]
+        dec[np_] = min(r[0] for r in runs)
+        dec_inner[np_] = min(ranks_time(r[2]) for r in runs)
+    print(f"mrsv-mpi decode, {label}: {dec[1]:.2f} s on 1 rank, {dec[2]:.2f} s on 2 (speed-up "
+          f"{dec[1] / dec[2]:.2f}x; the ranks' own time {dec_inner[1]:.2f} s and {dec_inner[2]:.2f} s, "
+          f"{dec_inner[1] / dec_inner[2]:.2f}x)")
+    for np_ in (1, 2):
+        os.remove(os.path.join(tmp, f"mpi{np_}.mrsv"))
+    os.remove(os.path.join(tmp, "mpi.raw"))
 
 
 def main():
@@ -187,32 +219,14 @@ def main():
         os.remove(ooc)
         mpi = os.path.join(os.path.dirname(mrsv), "mrsv-mpi")
         if os.path.exists(mpi):
-            # Wall time of mpirun, and the ranks' own time (mrsv-mpi's status
-            # line: from the moment every rank has started, without mpirun's
-            # and MPI_Init's start-up).
-            def ranks_time(stderr):
-                m = re.search(r"ranks, ([0-9.]+) s", stderr)
-                return float(m.group(1)) if m else float("nan")
-            times, inner = {}, {}
-            for np_ in (1, 2):
-                o = os.path.join(tmp, f"mpi{np_}.mrsv")
-                times[np_], _, err = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi,
-                                          "encode", *dims, "--tile", "256", "--max-error", "2", "--bound-route", "residual",
-                                          raw, o])
-                inner[np_] = ranks_time(err)
-            same = open(os.path.join(tmp, "mpi2.mrsv"), "rb").read() == open(stream, "rb").read()
-            print(f"mrsv-mpi encode: {times[1]:.1f} s on 1 rank, {times[2]:.1f} s on 2 (speed-up "
-                  f"{times[1] / times[2]:.2f}x; the ranks' own time {inner[1]:.1f} s and {inner[2]:.1f} s, "
-                  f"{inner[1] / inner[2]:.2f}x); same stream as mrsv encode: {same}")
-            dec, dec_inner = {}, {}
-            for np_ in (1, 2):
-                runs = [run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), mpi, "decode",
-                             os.path.join(tmp, "mpi2.mrsv"), os.path.join(tmp, "mpi.raw")]) for _ in range(2)]
-                dec[np_] = min(r[0] for r in runs)
-                dec_inner[np_] = min(ranks_time(r[2]) for r in runs)
-            print(f"mrsv-mpi decode: {dec[1]:.2f} s on 1 rank, {dec[2]:.2f} s on 2 (speed-up {dec[1] / dec[2]:.2f}x; "
-                  f"the ranks' own time {dec_inner[1]:.2f} s and {dec_inner[2]:.2f} s, "
-                  f"{dec_inner[1] / dec_inner[2]:.2f}x)")
+            mpi_speedup(mpi, tmp, "tiles 256", [*dims, "--tile", "256", "--max-error", "2", "--bound-route",
+                                                "residual"], raw, stream)
+            # Precincts by a team of ranks (decision D92), against the
+            # single-process out-of-core stream.
+            pref = os.path.join(tmp, "pref.mrsv")
+            run([mrsv, "encode", "--quiet", *dims, "--precinct", "256", "--max-error", "2", "--out-of-core", raw, pref])
+            mpi_speedup(mpi, tmp, "precincts 256", [*dims, "--precinct", "256", "--max-error", "2"], raw, pref)
+            os.remove(pref)
         if not args.quick:
             print("== a 1024^3 CT volume (the bonsai scan mirrored 4 x 4 x 4), 64^3 bricks, out of core")
             import numpy as np
