@@ -6,8 +6,9 @@
 # 9608 x 9608 int16 (176 MiB). The limit is what a tiny out-of-core encode on
 # two threads needs plus a quarter of the grid's raw size (the issue's goal:
 # peak memory below 25 % of the raw size); the in-memory encode must fail
-# under it (the limit bites), the out-of-core lossless encode must not, and
-# its stream must decode to the grid exactly. (The unit tests check that the
+# under it (the limit bites), the out-of-core lossless encode must not, its
+# stream must decode to the grid exactly, and a region of it must decode
+# under the limit to the grid's samples. (The unit tests check that the
 # thread count does not change the bytes.)
 set -uo pipefail
 mrsv=$1
@@ -63,4 +64,13 @@ grep -q "out of memory" "$work/err" || fail "the in-memory encode did not say it
 [ ! -e "$work/mem.mrsv" ] || fail "a failed encode left an output file"
 "$mrsv" decode --quiet "$work/ooc.mrsv" "$work/back.raw" || fail "the out-of-core stream does not decode"
 cmp -s "$work/back.raw" "$work/big.raw" || fail "the lossless out-of-core stream does not give the grid back"
+# A region decodes under the limit too, from the blocks it reaches (5.7.6):
+# rows 5000 to 5299 of columns 3000 to 3999, the input's own samples.
+(ulimit -v $limit; "$mrsv" decode --quiet --region 3000,5000,4000,5300 "$work/ooc.mrsv" "$work/region.raw") ||
+  fail "the region decode failed under the limit"
+for ((y = 0; y < 300; y += 37)); do
+  cmp -s <(tail -c +$(( ((5000 + y) * 9608 + 3000) * 2 + 1 )) "$work/big.raw" | head -c 2000) \
+         <(tail -c +$(( y * 2000 + 1 )) "$work/region.raw" | head -c 2000) ||
+    fail "region row $y differs from the grid"
+done
 echo "precinct_memory_test: passed"
