@@ -249,6 +249,13 @@ if [ -f "$rainier" ]; then
   echo "  precincts out of core (D91): a strip of precincts in memory at a time, the analysis level by level"
   "$mrsv" encode --dims 1201,1201 --type int16 --nodata -32768 --precinct 256 --max-error 1 --out-of-core \
     "$out/rainier.raw" "$out/rainier_pooc.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
+  mpi=$(dirname "$mrsv")/mrsv-mpi
+  if [ -x "$mpi" ] && command -v mpirun >/dev/null; then
+    echo "  the same by 2 MPI ranks as a team (D92): pieces and boxes from a shared queue, blocks written by MPI-IO"
+    mpirun --allow-run-as-root --oversubscribe -np 2 "$mpi" encode --dims 1201,1201 --type int16 --nodata -32768 \
+      --precinct 256 --max-error 1 "$out/rainier.raw" "$out/rainier_pmpi.mrsv" 2>&1 | sed "s|$out/|demo/out/|; s/^/  /"
+    cmp -s "$out/rainier_pooc.mrsv" "$out/rainier_pmpi.mrsv" && echo "  the same bytes as one process"
+  fi
 else
   echo "  (skipped: needs ../shared/data)"
 fi
