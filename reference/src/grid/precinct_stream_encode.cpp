@@ -827,7 +827,6 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
         const ArrayBox band_box{{band.size[0], band.size[1], band.size[2]}, num_dims_};
         uint32_t block_edge[3], block_count[3];
         blockGrid(band_box, resolution, wh.precinct_log2, block_edge, block_count);
-        pass->bands[bi].sized(uint64_t{block_count[0]} * block_count[1] * block_count[2]);
         for (uint32_t i = 0; i < block_count[0]; ++i) {
           const uint32_t b_index[3] = {i, index[1], index[2]};
           Task t{bi, {from[0], from[1], from[2]}, blockAt(band_box, block_edge, b_index), 0};
@@ -879,6 +878,8 @@ Error PrecinctStreamEncoder::analyzeLevel(int level, BandPass* pass) {
   // thread takes pieces of its own (no barrier within a piece; on a
   // 256x256x1024 volume two threads gave 1.73x lifting pieces together).
   Error failed;
+  for (size_t bi = 1; bi < setup_.bands.size(); ++bi)  // sized before pieces run at once
+    if (setup_.bands[bi].level == level) pass->bands[bi].sized(blockCount(bi));
   {
     const uint64_t pieces = uint64_t{strips_s} * strips_y;
     std::unique_ptr<WorkQueue> queue = team_.queue(pieces);
