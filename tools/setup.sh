@@ -52,7 +52,10 @@ fi
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 if [ ! -f "$root/build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  # MRSV_BENCHMARKS=OFF in the environment leaves tools/bench's benchmarks out of the
+  # default build (.ci/run does: no test runs them).
+  cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+    -DMRSV_BENCHMARKS="${MRSV_BENCHMARKS:-ON}" >/dev/null
 fi
 echo "setup: building (Release) in build/"
 log=$(mktemp)
