@@ -326,6 +326,8 @@ expect 3 "$mrsv" encode --dims 129,128 --type int16 --tile 64 --out-of-core "$cr
 expect 1 "$mrsv" decode --region 1,1,9,9 "$vectors/tiled_invalid/index_length_disagrees.mrsv" "$work/x.raw"; stderr_has "E208"; one_line_stderr
 if [ ! -e "$work/x.mrsv" ] && [ ! -e "$work/x.raw" ]; then ok; else bad "a failed tiled command left an output"; fi
 
+expect 1 "$mrsv" encode --dims 128,128 --type int16 --precinct 16 --max-error 2 --bound-route predictive --out-of-core \
+  "$crop" "$work/x.mrsv"; stderr_has "residual route only"; one_line_stderr
 # A grid in precincts decoded whole to raw or NRRD goes by rows of precincts
 # on the threads: the samples of the whole decoder (the canonical output's),
 # for any thread count; a damaged stream gives the whole decoder's error.

@@ -1162,6 +1162,8 @@ Error PrecinctStreamEncoder::encode(const Metadata& metadata, SharedScratch& out
                            "target would decode the grid once per step tried)");
   if (!(options_.step > 0) && options_.max_error < 0 && !(options_.bits_per_sample > 0))
     return invalid("options", "give a step, a rate, an error bound or lossless");
+  if (options_.bound_route == WaveletEncodeOptions::BoundRoute::kPredictive)
+    return invalid("bound_route", "out-of-core precinct coding takes the residual route only (decision D91)");
   if (options_.max_error >= 0 && !integer_)
     return invalid("max_error", "error bounds and lossless coding need integer samples in this version");
   const uint32_t d = options_.max_error >= 0 ? static_cast<uint32_t>(std::floor(options_.max_error)) : 0;
