@@ -20,7 +20,8 @@
 namespace mrsv {
 namespace {
 
-// A grid held in memory, read a box at a time as a raw file would be.
+// A grid held in memory, read a box at a time as a raw file would be (from
+// several threads at once).
 class MemoryBoxReader : public GridBoxReader {
  public:
   MemoryBoxReader(const GridHeader& h, const std::vector<uint8_t>& samples) : h_(h), samples_(samples) {}
@@ -32,10 +33,8 @@ class MemoryBoxReader : public GridBoxReader {
         std::memcpy(out, samples_.data() + from, size[0] * bytes);
         out += size[0] * bytes;
       }
-    ++reads;
     return true;
   }
-  int reads = 0;
 
  private:
   GridHeader h_;
