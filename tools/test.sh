@@ -8,14 +8,14 @@
 #      repeat the same code on the largest real data (SANITIZE_SKIP below);
 #   3. the decode library built alone (no CGAL, no TetGen) with clang, libFuzzer,
 #      ASan + UBSan and -Werror: its tests, then a short run of every fuzz target
-#      (MRSV_FUZZ_SECONDS per target, default 12).
+#      (MRSV_FUZZ_SECONDS per target, default 10).
 # Stages 2 and 3 build at -O1 with line tables only, and stage 2 builds only what its
 # tests run: that cuts their compile time to a third, so that CI stays within 30 minutes
 # on 2 cores.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 jobs=$(nproc)
-fuzz_seconds=${MRSV_FUZZ_SECONDS:-12}
+fuzz_seconds=${MRSV_FUZZ_SECONDS:-10}
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 

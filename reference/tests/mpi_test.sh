@@ -19,7 +19,7 @@ vol=$root/demo/data/ct_head_64x64x32_uint8.raw
 # input | options | what | what mrsv encode adds | rank counts (each mpirun
 # costs about a second)
 cases=(
-  "sh.raw|--dims 317,460 --type int16 --tile 64|lossless, partial tiles||2 3"
+  "sh.raw|--dims 317,460 --type int16 --tile 64|lossless, partial tiles||2"
   "sh.raw|--dims 317,460 --type int16 --tile 100,77 --max-error 3 --nodata 0 --meta value_units=m|error bound, no-data, meta||2 3"
   "vol|--dims 64,64,32 --type uint8 --tile 32,32,8 --step 4|a CT volume in bricks, a step||2 3"
   "vol|--dims 64,64,32 --type uint8 --tile 32 --step 4|one row of bricks along z||2"
