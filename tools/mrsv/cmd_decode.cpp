@@ -3,7 +3,6 @@
 #include <climits>
 #include <condition_variable>
 #include <cstdio>
-#include <cstring>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -11,7 +10,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "common/crc32c.h"
+#include "bitstream/container_framer.h"
 #include "common/parallel_for.h"
 #include "mrsv/file_io.h"
 #include "mrsv/grid_formats.h"
@@ -182,34 +181,33 @@ std::string levelPath(const std::string& pattern, int level) {
 
 Error ioError(const std::string& message) { return Error{Status::kIoError, 0, "--levels-out", message}; }
 
-// Whether every chunk of the file is whole and its CRC-32C right, and the
-// last is MEND: a decode by regions reads chunks in part (5.7.6 lets it skip
-// their CRCs), so the whole decode by precinct rows checks them first.
+// Whether the file keeps every framing rule of chapter 2 (each chunk whole,
+// its CRC-32C right, the order rules, MEND last), a chunk in memory at a
+// time: a decode by regions reads chunks in part (5.7.6 lets it skip their
+// CRCs), so the whole decode by precinct rows checks them first.
 bool chunksIntact(ByteSource& source) {
+  ContainerFramer framer{ContainerOptions{}};
+  Container container;
   const uint64_t size = source.size();
-  uint64_t at = kFileHeaderSize;
-  std::vector<uint8_t> buffer(1 << 20);
-  bool ended = false;
-  while (at < size && !ended) {
+  uint8_t file_header[kFileHeaderSize];
+  if (size < kFileHeaderSize || !source.read(0, kFileHeaderSize, file_header) ||
+      !framer.fileHeader(file_header, kFileHeaderSize, &container).ok())
+    return false;
+  std::vector<uint8_t> chunk_bytes;
+  for (uint64_t at = kFileHeaderSize; !container.complete;) {
     uint8_t head[kChunkHeaderSize];
-    if (at + kChunkHeaderSize + kChunkCrcSize > size || !source.read(at, sizeof head, head)) return false;
-    const uint64_t length = uint64_t{head[4]} | uint64_t{head[5]} << 8 | uint64_t{head[6]} << 16 | uint64_t{head[7]} << 24;
-    if (at + kChunkHeaderSize + length + kChunkCrcSize > size) return false;
-    uint32_t crc = crc32c(0, head, sizeof head);
-    for (uint64_t done = 0; done < length;) {
-      const size_t n = static_cast<size_t>(std::min<uint64_t>(buffer.size(), length - done));
-      if (!source.read(at + kChunkHeaderSize + done, n, buffer.data())) return false;
-      crc = crc32c(crc, buffer.data(), n);
-      done += n;
-    }
-    uint8_t tail[kChunkCrcSize];
-    if (!source.read(at + kChunkHeaderSize + length, sizeof tail, tail)) return false;
-    if (crc != (uint32_t{tail[0]} | uint32_t{tail[1]} << 8 | uint32_t{tail[2]} << 16 | uint32_t{tail[3]} << 24))
+    ChunkView chunk;
+    if (at + kChunkHeaderSize > size || !source.read(at, sizeof head, head) ||
+        !framer.chunkHeader(head, at, &chunk).ok() || chunk.endOffset() > size)
       return false;
-    ended = std::memcmp(head, "MEND", 4) == 0;
-    at += kChunkHeaderSize + length + kChunkCrcSize;
+    chunk_bytes.resize(chunk.endOffset() - at);
+    if (!source.read(at, chunk_bytes.size(), chunk_bytes.data()) ||
+        !framer.wholeChunk(chunk_bytes.data(), &chunk, &container).ok())
+      return false;
+    at = chunk.endOffset();
+    if (container.complete) return at == size;
   }
-  return ended && at == size;
+  return false;
 }
 
 // A grid in precincts (5.7.6) decoded whole to raw or NRRD as rows of
