@@ -7,7 +7,8 @@
 //   size     stream bytes, bits per split of connectivity and geometry, bits
 //            per tet and per vertex, against `xz -9` of the same quantised mesh
 //            in binary (positions and fields in their bytes, 32-bit indices).
-//   decode   splits per second, decoding the whole stream (best of 3).
+//   decode   splits per second, decoding the whole stream (best of 3), against
+//            CGAL's Delaunay_triangulation_3 of the finest level's vertices.
 //   levels   at 50/20/10/5 % of the tets: time to reach the level from the
 //            finest (setLevel) against rebuilding it (simplifying the input to
 //            that tet count); field PSNR at 10^6 random positions, boundary
@@ -25,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "cgal_delaunay_peer.h"
 #include "mrsv/progressive_tet_mesh.h"
 #include "mrsv/tet_formats.h"
 #include "mrsv/tet_metrics.h"
@@ -159,15 +161,24 @@ void runMesh(const std::string& name, bool peer, uint64_t samples) {
               (st.flag_bits + st.cut_bits) / splits, st.flag_bits / splits, st.flag_decisions / splits, st.cut_bits / splits,
               st.value_bits / splits, xz, xz ? double(xz) / stream.size() : 0.0);
 
-  // decode
-  double best = 1e9;
+  // decode, and its peer in turn (a slow spell falls on both): CGAL's
+  // Delaunay triangulation of the finest level's vertices, the paper's other
+  // way to a tet mesh of them (7.2).
+  double best = 1e9, delaunay = 1e9;
+  size_t delaunay_tets = 0;
   DecodedTetMesh d;
+  std::vector<std::array<double, 3>> vertices;
   for (int i = 0; i < 3; ++i) {
     auto a = Clock::now();
     decodeProgressiveTetMesh(stream.data(), stream.size(), DecodeOptions{}, &d);
     best = std::min(best, seconds(a, Clock::now()));
+    if (i == 0) vertices = d.mesh.mesh().positions;
+    delaunay = std::min(delaunay, bench::cgalDelaunaySeconds(vertices, &delaunay_tets));
   }
-  std::printf("decode: %.3f s for %u splits: %.0f splits/s\n", best, st.splits, st.splits / best);
+  std::printf("decode: %.3f s for %u splits: %.0f splits/s; CGAL Delaunay_triangulation_3 of its %zu vertices "
+              "%.3f s (%zu tets, %.0f vertices/s): decode/CGAL %.2fx\n",
+              best, st.splits, st.splits / best, vertices.size(), delaunay, delaunay_tets, vertices.size() / delaunay,
+              (st.splits / best) / (vertices.size() / delaunay));
 
   // levels
   std::printf("| tets %% | PT tets | reach (ms) | rebuild (ms) | rebuild/reach | PT PSNR | CGAL PSNR | PT-CGAL dB |"

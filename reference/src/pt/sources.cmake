@@ -34,8 +34,8 @@ function(mrsv_add_pt_bench)
   if(NOT MRSV_PT_BENCH_ZSTD OR NOT MRSV_PT_BENCH_ZSTD_INCLUDE)
     return()
   endif()
-  add_executable(pt_bench tools/bench/pt_bench.cpp tools/bench/tet_cgal_peer.cpp reference/tests/shared_data.cpp
-                          reference/tests/test_support.cpp)
+  add_executable(pt_bench tools/bench/pt_bench.cpp tools/bench/tet_cgal_peer.cpp tools/bench/cgal_delaunay_peer.cpp
+                          reference/tests/shared_data.cpp reference/tests/test_support.cpp)
   target_include_directories(pt_bench PRIVATE reference/src reference/tests tools/bench ${MRSV_PT_BENCH_ZSTD_INCLUDE})
   target_link_libraries(pt_bench PRIVATE mrsv_encode mrsv_io mrsv_metrics ${MRSV_PT_BENCH_ZSTD} GTest::gtest)
   target_compile_definitions(pt_bench PRIVATE MRSV_SHARED_DATA="${PROJECT_SOURCE_DIR}/../shared/data"
