@@ -24,8 +24,7 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
   tets_ = tets;
   const uint32_t nv = static_cast<uint32_t>(positions.size());
   const uint32_t nt = static_cast<uint32_t>(tets.size());
-  head_.assign(nv, kNone);
-  next_.assign(4 * size_t(nt), kNone);
+  stars_.assign(nv);
   alive_.assign(nt, 1);
   boundary_.assign(nt, 0);
   boundary_vertex_.assign(nv, 0);
@@ -37,6 +36,7 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
       }
     }
   }
+  std::vector<uint32_t> star_size(nv, 0);
   for (uint32_t t = nt; t-- > 0;) {
     const auto& v = tets_[t];
     for (int i = 0; i < 4; ++i) {
@@ -49,14 +49,17 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
       *error = "tet " + std::to_string(t) + ": not positively oriented (orient3d <= 0)";
       return false;
     }
-    for (int i = 0; i < 4; ++i) {
-      next_[4 * t + i] = head_[v[i]];
-      head_[v[i]] = 4 * t + i;
-    }
+    for (int i = 0; i < 4; ++i) ++star_size[v[i]];
+  }
+  // Each star in increasing tet order (the order the simplifier's choices
+  // among equal costs follow), its block sized once, the blocks in vertex order.
+  for (uint32_t v = 0; v < nv; ++v) stars_.reserve(v, star_size[v]);
+  for (uint32_t t = 0; t < nt; ++t) {
+    for (uint32_t i = 0; i < 4; ++i) stars_.push(tets_[t][i], 4 * t + i);
   }
   live_tets_ = nt;
   live_vertices_ = 0;
-  for (uint32_t v = 0; v < nv; ++v) live_vertices_ += head_[v] != kNone;
+  for (uint32_t v = 0; v < nv; ++v) live_vertices_ += !stars_.empty(v);
 
   // Faces, grouped by their smallest vertex: each is matched within that
   // vertex's star, a short list, so no global sort or hash is needed.
@@ -87,14 +90,15 @@ bool TetComplex::build(const std::vector<IPoint>& positions, const std::vector<s
     for (size_t i = 0; i < faces.size();) {
       size_t j = i + 1;
       while (j < faces.size() && faces[j].x == faces[i].x && faces[j].y == faces[i].y) ++j;
-      const std::string name = "face (" + std::to_string(m) + ", " + std::to_string(faces[i].x) + ", " +
-                               std::to_string(faces[i].y) + ")";
+      auto name = [&] {
+        return "face (" + std::to_string(m) + ", " + std::to_string(faces[i].x) + ", " + std::to_string(faces[i].y) + ")";
+      };
       if (j - i > 2) {
-        *error = name + ": in more than two tets";
+        *error = name() + ": in more than two tets";
         return false;
       }
       if (j - i == 2 && faces[i].forward == faces[i + 1].forward) {
-        *error = name + ": its two tets give it the same orientation";
+        *error = name() + ": its two tets give it the same orientation";
         return false;
       }
       if (j - i == 1) boundary_[faces[i].corner >> 2] |= uint8_t(1u << (faces[i].corner & 3));
@@ -205,24 +209,16 @@ void TetComplex::collapse(uint32_t vs, uint32_t vt, std::vector<uint32_t>* vanis
     --live_tets_;
     if (vanished) vanished->push_back(t);
   }
-  // vt's corners become vs's: relabel them and splice vt's list onto vs's.
-  uint32_t* link = &head_[vt];
-  uint32_t last = kNone;
-  while (*link != kNone) {
-    const uint32_t c = *link;
-    if (!alive_[c >> 2]) {
-      *link = next_[c];
-      continue;
-    }
-    tets_[c >> 2][c & 3] = vs;
-    last = c;
-    link = &next_[c];
-  }
-  if (last != kNone) {
-    next_[last] = head_[vs];
-    head_[vs] = head_[vt];
-  }
-  head_[vt] = kNone;
+  // vt's corners become vs's: relabel them, and vs's list is vt's live
+  // corners followed by its own.
+  forEachTet(vt, [&](uint32_t t, uint32_t corner) { tets_[t][corner] = vs; });
+  const uint32_t moved = stars_.size(vt), own = stars_.size(vs);
+  stars_.reserve(vs, moved + own);  // may move the pool: pointers after it
+  uint32_t* into = stars_.data(vs);
+  std::copy_backward(into, into + own, into + moved + own);
+  std::copy_n(stars_.data(vt), moved, into);
+  stars_.resize(vs, moved + own);
+  stars_.clear(vt);
   boundary_vertex_[vs] |= boundary_vertex_[vt];
   --live_vertices_;
 }
