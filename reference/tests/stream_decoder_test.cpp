@@ -146,12 +146,43 @@ TEST(StreamDecoder, LevelsEqualReducedOneShotDecodes) {
         }
       }
     }
-    ASSERT_TRUE(d.finish().ok()) << v.file;
+    const Error e = d.finish();
+    ASSERT_TRUE(e.ok()) << v.file << ": " << e.describe();
     DecodedGrid full;
     ASSERT_TRUE(decodeGrid(bytes.data(), bytes.size(), DecodeOptions{}, &full).ok());
     EXPECT_TRUE(d.grid().samples == full.samples) << v.file << " after levels";
   }
   EXPECT_GE(compared, 10);
+}
+
+// A caller that moves a PT to coarser levels between chunks (to show them)
+// gets the same mesh at the end: each batch applies to the finest level.
+TEST(StreamDecoder, TetMeshMovedBetweenChunksEqualsOneShot) {
+  int compared = 0;
+  for (const auto& v : test::manifestVectors()) {
+    if (!v.valid) continue;
+    std::vector<uint8_t> bytes = test::readFileOrFail(test::sourcePath("conformance/" + v.file));
+    if (contentOf(bytes) != StreamContent::kTetMesh) continue;
+    const Result whole = oneShot(bytes, bytes.size(), DecodeOptions{});
+    StreamDecoder d(DecodeOptions{}, StreamContent::kTetMesh);
+    uint32_t turn = 0;
+    for (size_t i = 0; i < bytes.size(); ++i) {
+      ASSERT_TRUE(d.feed(&bytes[i], 1).ok()) << v.file;
+      ProgressiveTetMesh& mesh = d.tetMesh().mesh;
+      if (d.takeUnits().empty() || !d.tetMesh().has_mesh) continue;
+      // Down to the base, half way, or up again, in turn.
+      const uint32_t finest = mesh.splitsDecoded();
+      mesh.setLevel(turn % 3 == 0 ? 0 : turn % 3 == 1 ? finest / 2 : finest);
+      ++turn;
+    }
+    const Error e = d.finish();
+    ASSERT_TRUE(e.ok()) << v.file << ": " << e.describe();
+    if (!d.tetMesh().has_mesh) continue;  // a prefix without TBAS
+    d.tetMesh().mesh.setLevel(d.tetMesh().mesh.splitsDecoded());
+    EXPECT_TRUE(canonicalTetMeshOutput(d.tetMesh().mesh) == whole.canonical) << v.file;
+    ++compared;
+  }
+  EXPECT_GT(compared, 0);
 }
 
 TEST(StreamDecoder, ErrorIsReportedByTheFeedThatCompletesTheChunk) {

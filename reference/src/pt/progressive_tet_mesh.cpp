@@ -35,6 +35,8 @@ std::string ProgressiveTetMesh::Impl::applyNewSplit(const LinkT& link_of_vs, uin
   const uint32_t vt = mesh.vertexCount() - 1;
   if (std::string problem = splitRegion(link_of_vs, walk_local, closed, &scratch, &region); !problem.empty())
     return problem;
+  // In slot order, as the tet lists keep them (incidence_lists.h).
+  std::sort(region.begin(), region.end());
   walk_global.clear();
   for (uint32_t local : walk_local) walk_global.push_back(link_of_vs.vertices[local]);
   mesh.incident.addVertex();
@@ -80,7 +82,7 @@ template std::string ProgressiveTetMesh::Impl::applyNewSplit(const Link&, uint32
 void ProgressiveTetMesh::Impl::redo(uint32_t k) {
   const PtSplitRecord& r = splits[k];
   const uint32_t vt = header.base_vertex_count + k;
-  applySplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
+  redoSplit(&mesh, r.vs, vt, &cuts[r.cut_begin], r.cut_length, r.closed, &moved[r.moved_begin], r.moved_count);
 }
 
 void ProgressiveTetMesh::Impl::undo(uint32_t k) {
@@ -96,6 +98,12 @@ void ProgressiveTetMesh::Impl::prefetchSplit(uint32_t k) const {
   mesh.incident.prefetch(vt);
   for (uint32_t i = 0; i < r.cut_length; ++i) mesh.incident.prefetch(cuts[r.cut_begin + i]);
   for (uint32_t i = 0; i < r.moved_count; ++i) __builtin_prefetch(&mesh.tets[moved[r.moved_begin + i]], 1);
+}
+
+void ProgressiveTetMesh::Impl::prefetchSplitLists(uint32_t k) const {
+  const PtSplitRecord& r = splits[k];
+  mesh.incident.prefetchEntries(r.vs);
+  for (uint32_t i = 0; i < r.cut_length; ++i) mesh.incident.prefetchEntries(cuts[r.cut_begin + i]);
 }
 
 ProgressiveTetMesh::ProgressiveTetMesh() : impl_(std::make_unique<Impl>()) {}
@@ -135,10 +143,12 @@ void ProgressiveTetMesh::setLevel(uint32_t level) {
   const bool ahead = impl_->mesh.tets.size() >= (1u << 16);
   while (impl_->level < level) {
     if (ahead && impl_->level + 4 < level) impl_->prefetchSplit(impl_->level + 4);
+    if (ahead && impl_->level + 2 < level) impl_->prefetchSplitLists(impl_->level + 2);
     impl_->redo(impl_->level++);
   }
   while (impl_->level > level) {
     if (ahead && impl_->level >= level + 5) impl_->prefetchSplit(impl_->level - 5);
+    if (ahead && impl_->level >= level + 3) impl_->prefetchSplitLists(impl_->level - 3);
     impl_->undo(--impl_->level);
   }
 }

@@ -142,6 +142,9 @@ Error PtSteps::batch(const ChunkView& chunk) {
   if (!rc.validStart())
     return Error{Status::kBadEntropyPayload, at + 4, "TSPL", "coded data must start with a 0 byte"};
   DecodingCoder coder{&rc};
+  // A batch applies to the finest level decoded (7.7): a caller of the
+  // streaming decoder may have moved to a coarser one between chunks.
+  out_->mesh.setLevel(out_->mesh.splitsDecoded());
   const uint32_t vertices = s.mesh.vertexCount();
   uint32_t done = 0, v = 0;
   // Made once, not per flag: the flag loop runs about 30 times per split.
@@ -193,11 +196,12 @@ Error PtSteps::end(const Container& c) {
   if (c.complete) {
     if (!seen_base_)
       return Error{Status::kChunkOrder, c.end_chunk_offset, "MEND", "a PT stream needs TBAS before MEND"};
-    if (out_->batches_decoded != h.batch_count || s.splits.size() != h.splitCount() ||
-        s.mesh.tets.size() != h.tet_count)
+    // The finest level's tets, whatever level a streaming caller moved to.
+    const uint32_t tets = out_->mesh.tetCountAt(out_->mesh.splitsDecoded());
+    if (out_->batches_decoded != h.batch_count || s.splits.size() != h.splitCount() || tets != h.tet_count)
       return Error{Status::kSplitCountMismatch, c.end_chunk_offset, "MEND",
                    std::to_string(out_->batches_decoded) + " batches with " + std::to_string(s.splits.size()) +
-                       " splits and " + std::to_string(s.mesh.tets.size()) + " tets, but THDR announces " +
+                       " splits and " + std::to_string(tets) + " tets, but THDR announces " +
                        std::to_string(h.batch_count) + " with " + std::to_string(h.splitCount()) + " and " +
                        std::to_string(h.tet_count)};
   }

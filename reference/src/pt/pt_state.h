@@ -65,6 +65,9 @@ struct ProgressiveTetMesh::Impl {
   void undo(uint32_t k);
   // Starts loading what redo(k) and undo(k) change (lists, moved tets).
   void prefetchSplit(uint32_t k) const;
+  // The tet lists of split k's vs and cut vertices, which undoing or redoing
+  // it reads: asked for after prefetchSplit(k) has brought their records.
+  void prefetchSplitLists(uint32_t k) const;
 };
 
 }  // namespace mrsv

@@ -13,6 +13,11 @@
 //
 // A push may move the pool: pointers from data() or of() are good until the
 // next push(), reserve() or addVertex().
+//
+// The PT decoder keeps every list in increasing slot order (buildIncidence,
+// and every split and its undoing keep it: spec 7.6.5's undo then finds a
+// split's new tets, the last slots, at the ends of their lists, and puts the
+// moved tets back where they were).
 #pragma once
 
 #include <algorithm>
@@ -77,6 +82,14 @@ class IncidenceLists {
   void prefetch(uint32_t v) const {
     __builtin_prefetch(&list_[v]);
     __builtin_prefetch(&count8_[v]);
+  }
+  // Starts loading v's entries (the first and last cache lines of them; a
+  // star's list is about 24 entries), once its record is at hand.
+  void prefetchEntries(uint32_t v) const {
+    const List& l = list_[v];
+    const uint32_t* first = pool_.data() + l.offset;
+    __builtin_prefetch(first);
+    if (l.size > 0) __builtin_prefetch(first + l.size - 1);
   }
 
   void push(uint32_t v, uint32_t slot) {

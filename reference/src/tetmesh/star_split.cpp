@@ -103,21 +103,28 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   // vt's list is new: sized once for its moved and new tets and a few more,
   // so that the tets later splits give it seldom move it again.
   incident.reserve(vt, 2 * (moved_count + edges));
-  std::copy_n(moved->data(), moved_count, incident.data(vt));
-  incident.resize(vt, moved_count);
   // Branch-free, as which corner is vs and which tets move are not predictable.
   for (uint32_t t : *moved) {
     Tet& c = tets[t];
     c[cornerOf(c, vs)] = vt;
   }
-  // vs keeps the tets of the triangles the region did not mark, in order.
+  // vs keeps the tets of the triangles the region did not mark, in order;
+  // vt's list takes the others in the same order, so that both stay in
+  // increasing slot order (IncidenceLists' invariant for undoing splits),
+  // and `moved` becomes that order too.
   uint32_t* star_vs = incident.data(vs);
-  uint32_t kept = 0;
+  uint32_t* star_vt = incident.data(vt);
+  uint32_t kept = 0, to_vt = 0;
   for (uint32_t f = 0; f < faces; ++f) {
-    star_vs[kept] = star_vs[f];
+    const uint32_t slot = star_vs[f];
+    star_vs[kept] = slot;
+    star_vt[to_vt] = slot;
     kept += side[f] != 1;
+    to_vt += side[f] == 1;
   }
   incident.resize(vs, kept);
+  incident.resize(vt, to_vt);
+  std::copy_n(star_vt, to_vt, moved->data());
   for (uint32_t i = 0; i < edges; ++i) {
     const uint32_t a = (*walk_global)[i], b = (*walk_global)[after(i)];
     const uint32_t slot = first_new + i;

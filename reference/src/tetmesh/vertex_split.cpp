@@ -91,6 +91,35 @@ Tet replaced(Tet t, uint32_t from, uint32_t to) {
 
 }  // namespace
 
+namespace {
+
+// 7.6.4 step 2: vt's list (new) takes the moved tets, which take vt in vs's
+// place; `drop_moved` takes them out of vs's list; the new tets follow in cut
+// order.
+template <class DropMoved>
+void moveAndAdd(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length, bool closed,
+                const uint32_t* moved, uint32_t moved_count, DropMoved drop_moved) {
+  const uint32_t edges = cutEdgeCount(walk_length, closed);
+  const uint32_t first_new = static_cast<uint32_t>(mesh->tets.size());
+  IncidenceLists& incident = mesh->incident;
+  // vt's list is new: sized once for its moved and new tets.
+  incident.reserve(vt, moved_count + edges);
+  for (uint32_t i = 0; i < moved_count; ++i) incident.push(vt, moved[i]);
+  for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
+  drop_moved();
+  for (uint32_t i = 0; i < edges; ++i) {
+    const uint32_t a = walk[i], b = walk[i + 1 == walk_length ? 0 : i + 1];
+    const uint32_t slot = first_new + i;
+    mesh->tets.push_back(Tet{vt, a, b, vs});
+    incident.push(vs, slot);
+    incident.push(vt, slot);
+    incident.push(a, slot);
+    incident.push(b, slot);
+  }
+}
+
+}  // namespace
+
 std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
                        bool closed, const uint32_t* moved, uint32_t moved_count) {
   const uint32_t edges = cutEdgeCount(walk_length, closed);
@@ -102,51 +131,61 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
     if (mesh->orientation(t) <= 0)
       return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
   }
-  const uint32_t first_new = static_cast<uint32_t>(mesh->tets.size());
-  IncidenceLists& incident = mesh->incident;
-  // vt's list is new: sized once for its moved and new tets.
-  incident.reserve(vt, moved_count + edges);
-  for (uint32_t i = 0; i < moved_count; ++i) incident.push(vt, moved[i]);
-  for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
-  // vs keeps the tets that did not move: those that still have vs as a
-  // corner (a moved tet has vt in its place now, and no tet repeats a
-  // corner). The order of the rest is kept.
-  const auto& tets = mesh->tets;
-  uint32_t* star_vs = incident.data(vs);
-  uint32_t kept = 0;
-  for (uint32_t f = 0; f < incident.size(vs); ++f) {
-    const Tet& k = tets[star_vs[f]];
-    if (k[0] == vs || k[1] == vs || k[2] == vs || k[3] == vs) star_vs[kept++] = star_vs[f];
-  }
-  incident.resize(vs, kept);
-  for (uint32_t i = 0; i < edges; ++i) {
-    const uint32_t a = walk[i], b = walk[(i + 1) % walk_length];
-    const uint32_t slot = first_new + i;
-    mesh->tets.push_back(Tet{vt, a, b, vs});
-    incident.push(vs, slot);
-    incident.push(vt, slot);
-    incident.push(a, slot);
-    incident.push(b, slot);
-  }
+  moveAndAdd(mesh, vs, vt, walk, walk_length, closed, moved, moved_count, [&] {
+    // vs keeps the tets that did not move: those that still have vs as a
+    // corner (a moved tet has vt in its place now, and no tet repeats a
+    // corner). The order of the rest is kept.
+    IncidenceLists& incident = mesh->incident;
+    const auto& tets = mesh->tets;
+    uint32_t* star_vs = incident.data(vs);
+    uint32_t kept = 0;
+    for (uint32_t f = 0; f < incident.size(vs); ++f) {
+      const Tet& k = tets[star_vs[f]];
+      if (k[0] == vs || k[1] == vs || k[2] == vs || k[3] == vs) star_vs[kept++] = star_vs[f];
+    }
+    incident.resize(vs, kept);
+  });
   return "";
+}
+
+void redoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length, bool closed,
+               const uint32_t* moved, uint32_t moved_count) {
+  moveAndAdd(mesh, vs, vt, walk, walk_length, closed, moved, moved_count, [&] {
+    // Both in increasing slot order, `moved` a subsequence of vs's list.
+    IncidenceLists& incident = mesh->incident;
+    uint32_t* star_vs = incident.data(vs);
+    const uint32_t n = incident.size(vs);
+    uint32_t kept = 0, next = 0;
+    for (uint32_t f = 0; f < n; ++f) {
+      const uint32_t slot = star_vs[f];
+      const bool is_moved = next < moved_count && moved[next] == slot;
+      star_vs[kept] = slot;
+      kept += !is_moved;
+      next += is_moved;
+    }
+    incident.resize(vs, kept);
+  });
 }
 
 void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk, uint32_t walk_length,
                bool closed, const uint32_t* moved, uint32_t moved_count) {
   const uint32_t edges = cutEdgeCount(walk_length, closed);
-  // The new tets are the last slots, and the last entries of their vertices'
-  // lists: every later split has been undone already.
+  // The new tets are the last slots (every later split has been undone), so
+  // the last entries of their lists.
   IncidenceLists& incident = mesh->incident;
-  for (uint32_t i = edges; i-- > 0;) {
-    incident.pop(walk[(i + 1) % walk_length]);
+  for (uint32_t i = 0; i < edges; ++i) {
     incident.pop(walk[i]);
+    incident.pop(walk[i + 1 == walk_length ? 0 : i + 1]);
   }
-  incident.resize(vs, incident.size(vs) - edges);
+  const uint32_t n = incident.size(vs) - edges;
   mesh->tets.resize(mesh->tets.size() - edges);
-  for (uint32_t i = 0; i < moved_count; ++i) {
-    mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vt, vs);
-    incident.push(vs, moved[i]);
-  }
+  for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vt, vs);
+  // vs's list and `moved` merged from their ends, in place.
+  incident.reserve(vs, n + moved_count);  // may move the pool: the pointer after it
+  uint32_t* star_vs = incident.data(vs);
+  uint32_t from = n, next = moved_count, to = n + moved_count;
+  while (next > 0) star_vs[--to] = from > 0 && star_vs[from - 1] > moved[next - 1] ? star_vs[--from] : moved[--next];
+  incident.resize(vs, n + moved_count);
   incident.clear(vt);
 }
 
