@@ -103,10 +103,19 @@ TEST(PtStream, DecodesTheFullMeshAndEveryLevelIsAManifold) {
     levels.push_back(canonicalTetMeshOutput(d.mesh));
   }
   EXPECT_EQ(levels.back(), finest);
-  // Down and up again in jumps gives the same bytes at every level.
+  // Down and up again in jumps gives the same bytes at every level, and the
+  // same tet lists as built afresh (in slot order, incidence_lists.h).
   for (uint32_t level : {7u, 0u, 13u, 2u, static_cast<uint32_t>(levels.size() - 1), 5u}) {
     d.mesh.setLevel(level);
     EXPECT_EQ(canonicalTetMeshOutput(d.mesh), levels[level]) << "level " << level;
+    const TetComplex& held = d.mesh.state().mesh;
+    TetComplex fresh = held;
+    fresh.positions.resize(d.mesh.vertexCount());
+    fresh.buildIncidence();
+    for (uint32_t v = 0; v < d.mesh.vertexCount(); ++v) {
+      const auto a = held.incident.of(v), b = fresh.incident.of(v);
+      ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "level " << level << ", vertex " << v;
+    }
   }
 }
 
