@@ -15,10 +15,6 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   const uint32_t m = static_cast<uint32_t>(link.vertices.size());
   const uint32_t faces = static_cast<uint32_t>(link.triangles.size());
   constexpr uint32_t kNo = StarLink::kNoTriangle;
-  // The cut's next position, i + 1 mod k, without a division: perf put 12 %
-  // of this function's samples beside a 32-bit divide per cut edge (the gain
-  // is within this machine's run-to-run noise).
-  auto after = [k](uint32_t i) { return i + 1 == k ? 0 : i + 1; };
 
   // 7.6.3 as splitRegion() finds it (seeds in cut order, then breadth
   // first, each triangle's edges in corner order), so that the moved tets
@@ -30,7 +26,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   uint32_t* queue = s->queue.data();
   uint32_t tail = 0;
   for (uint32_t i = 0; i < edges; ++i) {
-    const uint32_t a = walk[i], b = walk[after(i)];
+    const uint32_t a = walk[i], b = walk[nextOnCut(i, k)];
     const uint32_t vt_side = link.triangleHolding(b, a), vs_side = link.triangleHolding(a, b);
     if (vt_side == kNo || vs_side == kNo) return "the cut runs along the boundary of the link";
     if (side[vs_side] == 1 || side[vt_side] == 2) return "the cut does not separate the link";
@@ -46,7 +42,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   // holds it, and a block in the region is an error before it is left). Then
   // a step is one lookup, not a test of the cut positions of its ends (a
   // third of the flood, callgrind).
-  for (uint32_t i = 0; i < edges; ++i) star_link->forgetEdge(walk[i], walk[after(i)]);
+  for (uint32_t i = 0; i < edges; ++i) star_link->forgetEdge(walk[i], walk[nextOnCut(i, k)]);
   // A step from a region triangle across its edge a -> b to the triangle
   // holding b -> a; false when that is a block. Whether there is one (the
   // cut, the link's boundary) and whether it is new to the region cannot be
@@ -93,7 +89,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   }
   const Diff3 to_vs = differenceOf(vs);
   for (uint32_t i = 0; i < edges; ++i)
-    if (orientOfDifferences(d[walk[i]], d[walk[after(i)]], to_vs, below_2to20) <= 0)
+    if (orientOfDifferences(d[walk[i]], d[walk[nextOnCut(i, k)]], to_vs, below_2to20) <= 0)
       return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
 
   // Step 2, as applySplit() does it.
@@ -126,7 +122,7 @@ std::string applyStarSplit(TetComplex* mesh, StarLink* star_link, uint32_t vt, c
   incident.resize(vt, to_vt);
   std::copy_n(star_vt, to_vt, moved->data());
   for (uint32_t i = 0; i < edges; ++i) {
-    const uint32_t a = (*walk_global)[i], b = (*walk_global)[after(i)];
+    const uint32_t a = (*walk_global)[i], b = (*walk_global)[nextOnCut(i, k)];
     const uint32_t slot = first_new + i;
     tets.push_back(Tet{vt, a, b, vs});
     incident.push(vs, slot);

@@ -31,7 +31,7 @@ std::string regionOf(const LinkT& link, const std::vector<uint32_t>& walk, bool 
   uint32_t tail = 0;
   const uint32_t edges = cutEdgeCount(k, closed);
   for (uint32_t i = 0; i < edges; ++i) {
-    const uint32_t a = walk[i], b = walk[(i + 1) % k];
+    const uint32_t a = walk[i], b = walk[nextOnCut(i, k)];
     // vt's side holds the directed edge b -> a, vs's side a -> b.
     const int64_t vt_side = link.triangleFrom(b, a), vs_side = link.triangleFrom(a, b);
     if (vt_side < 0 || vs_side < 0) return "the cut runs along the boundary of the link";
@@ -108,7 +108,7 @@ void moveAndAdd(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk
   for (uint32_t i = 0; i < moved_count; ++i) mesh->tets[moved[i]] = replaced(mesh->tets[moved[i]], vs, vt);
   drop_moved();
   for (uint32_t i = 0; i < edges; ++i) {
-    const uint32_t a = walk[i], b = walk[i + 1 == walk_length ? 0 : i + 1];
+    const uint32_t a = walk[i], b = walk[nextOnCut(i, walk_length)];
     const uint32_t slot = first_new + i;
     mesh->tets.push_back(Tet{vt, a, b, vs});
     incident.push(vs, slot);
@@ -127,7 +127,7 @@ std::string applySplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_
     if (mesh->orientation(replaced(mesh->tets[moved[i]], vs, vt)) <= 0)
       return "tet " + std::to_string(moved[i]) + " would not be positive with vt in place of vs";
   for (uint32_t i = 0; i < edges; ++i) {
-    const Tet t{vt, walk[i], walk[(i + 1) % walk_length], vs};
+    const Tet t{vt, walk[i], walk[nextOnCut(i, walk_length)], vs};
     if (mesh->orientation(t) <= 0)
       return "the new tet at cut edge " + std::to_string(i) + " would not be positive";
   }
@@ -175,7 +175,7 @@ void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk,
   IncidenceLists& incident = mesh->incident;
   for (uint32_t i = 0; i < edges; ++i) {
     incident.pop(walk[i]);
-    incident.pop(walk[i + 1 == walk_length ? 0 : i + 1]);
+    incident.pop(walk[nextOnCut(i, walk_length)]);
   }
   const uint32_t n = incident.size(vs) - edges;
   mesh->tets.resize(mesh->tets.size() - edges);

@@ -76,5 +76,8 @@ void undoSplit(TetComplex* mesh, uint32_t vs, uint32_t vt, const uint32_t* walk,
                bool closed, const uint32_t* moved, uint32_t moved_count);
 
 inline uint32_t cutEdgeCount(uint32_t walk_length, bool closed) { return closed ? walk_length : walk_length - 1; }
+// The cut's position after i, i + 1 mod walk_length, without a division (a
+// 32-bit divide per cut edge stood out in perf of the decoder's split).
+inline uint32_t nextOnCut(uint32_t i, uint32_t walk_length) { return i + 1 == walk_length ? 0 : i + 1; }
 
 }  // namespace mrsv
